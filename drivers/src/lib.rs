@@ -1,0 +1,20 @@
+//! Depth sources for rover-terrain.
+//!
+//! Every source yields [`DepthFrame`]s: row-major `u16` depth in millimetres along the
+//! camera's optical axis (Z, not ray length), `0` meaning "no return". One small trait,
+//! [`DepthCamera`], is the whole contract; [`FakeCamera`] is the file-backed source
+//! that replays recordings (single PGM/PNG images, image directories, and libfreenect
+//! `fakenect` sessions) and is what the tests and the bench use.
+#![deny(missing_docs)]
+
+mod camera;
+mod error;
+mod fake;
+pub mod fakenect;
+mod frame;
+pub mod image;
+
+pub use camera::{DepthCamera, FrameStatus};
+pub use error::DriverError;
+pub use fake::FakeCamera;
+pub use frame::{DepthFrame, MAX_HEIGHT, MAX_WIDTH};
