@@ -1,1 +1,219 @@
-fn main(){}
+//! The rover-terrain command line.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::{Parser, Subcommand};
+use rover_terrain::validate;
+use rover_terrain::{Config, Error, Pipeline};
+use rover_terrain_drivers::{DepthCamera, DepthFrame, FakeCamera, FrameStatus};
+
+/// Terrain analysis from a depth camera for a six-wheeled rocker rover.
+#[derive(Parser, Debug)]
+#[command(name = "rover-terrain", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Analyse depth frames and print one JSON verdict per frame (JSON Lines).
+    ///
+    /// INPUT is a .pgm/.png depth image (16-bit, millimetres), a directory of them
+    /// (name order), or a libfreenect fakenect session directory. Without INPUT, the
+    /// bundled fixtures in fixtures/scenes are analysed.
+    Analyze {
+        /// Config file (TOML); defaults for every key not set.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Depth images, directories or fakenect sessions.
+        input: Vec<PathBuf>,
+    },
+    /// Time the whole pipeline on one frame and print one JSON line of medians and p99s.
+    Bench {
+        /// Config file (TOML).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Timed iterations after the warm-up.
+        #[arg(long, default_value_t = 1000)]
+        iterations: usize,
+        /// A depth image, directory or session (its first frame is used).
+        input: PathBuf,
+    },
+    /// Run the fixture suite against the expected verdicts and write the report.
+    Validate {
+        /// The fixture directory.
+        #[arg(default_value = "fixtures")]
+        dir: PathBuf,
+        /// Where to write the Markdown report.
+        #[arg(long, default_value = "docs/validation.md")]
+        out: PathBuf,
+    },
+    /// Render the fixture suite's frames and expectation files from the scene catalogue.
+    RenderFixtures {
+        /// Where to write them.
+        #[arg(long, default_value = "fixtures")]
+        out: PathBuf,
+    },
+}
+
+/// Exit code for an invalid configuration.
+const EXIT_CONFIG: u8 = 2;
+/// Exit code for bad input or a failed run.
+const EXIT_FAILURE: u8 = 1;
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("rover-terrain: {e:#}");
+            let config_error = e
+                .chain()
+                .any(|c| matches!(c.downcast_ref::<Error>(), Some(Error::Config { .. })));
+            ExitCode::from(if config_error {
+                EXIT_CONFIG
+            } else {
+                EXIT_FAILURE
+            })
+        }
+    }
+}
+
+fn load_config(path: Option<&Path>) -> anyhow::Result<Config> {
+    Ok(match path {
+        Some(p) => Config::load(p)?,
+        None => Config::default(),
+    })
+}
+
+/// The bundled fixtures: in the working directory, else beside the source tree.
+fn bundled(rel: &str) -> PathBuf {
+    let here = PathBuf::from(rel);
+    if here.exists() {
+        return here;
+    }
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
+}
+
+fn run(cli: Cli) -> anyhow::Result<ExitCode> {
+    match cli.command {
+        Command::Analyze { config, input } => {
+            let config = load_config(config.as_deref())?;
+            let inputs = if input.is_empty() {
+                vec![bundled("fixtures/scenes")]
+            } else {
+                input
+            };
+            analyze(config, &inputs)
+        }
+        Command::Bench {
+            config,
+            iterations,
+            input,
+        } => {
+            let config = load_config(config.as_deref())?;
+            anyhow::ensure!(iterations > 0, "--iterations must be at least 1");
+            let mut pipeline = Pipeline::new(config)?;
+            let mut camera = FakeCamera::open(&input)?;
+            let mut frame = DepthFrame::default();
+            match camera.next_frame(&mut frame)? {
+                FrameStatus::Frame => {}
+                FrameStatus::EndOfStream => anyhow::bail!("{}: no frame", input.display()),
+            }
+            let line = rover_terrain::bench::run(&mut pipeline, &frame, iterations)?;
+            println!("{line}");
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Validate { dir, out } => {
+            let results = validate::run_suite(&dir)?;
+            let report = validate::report(&results);
+            if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
+                std::fs::create_dir_all(parent)
+                    .with_context(|| format!("creating {}", parent.display()))?;
+            }
+            std::fs::write(&out, &report).with_context(|| format!("writing {}", out.display()))?;
+            let failed: Vec<_> = results.iter().filter(|r| !r.passed()).collect();
+            for r in &failed {
+                eprintln!("FAIL {}: {}", r.name, r.failures.join("; "));
+            }
+            eprintln!(
+                "{} passed, {} failed; report in {}",
+                results.len() - failed.len(),
+                failed.len(),
+                out.display()
+            );
+            Ok(if failed.is_empty() {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(EXIT_FAILURE)
+            })
+        }
+        Command::RenderFixtures { out } => {
+            let written = validate::write_fixtures(&out)?;
+            eprintln!("wrote {} fixtures under {}", written.len(), out.display());
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+/// Analyse every frame of every input; a bad input or frame is reported on stderr,
+/// the rest still analysed, and the exit code says something failed.
+fn analyze(config: Config, inputs: &[PathBuf]) -> anyhow::Result<ExitCode> {
+    let (w, h) = (config.camera.width as usize, config.camera.height as usize);
+    let mut pipeline = Pipeline::new(config)?;
+    let mut frame = DepthFrame::with_capacity(w, h);
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
+    let mut failed = false;
+    let mut index: u64 = 0;
+    for input in inputs {
+        let mut camera = match FakeCamera::open(input) {
+            Ok(c) => c,
+            Err(e) => {
+                eprintln!("rover-terrain: {e}");
+                failed = true;
+                continue;
+            }
+        };
+        loop {
+            match camera.next_frame(&mut frame) {
+                Ok(FrameStatus::Frame) => {}
+                Ok(FrameStatus::EndOfStream) => break,
+                Err(e) => {
+                    eprintln!("rover-terrain: {e}");
+                    failed = true;
+                    continue;
+                }
+            }
+            frame.seq = index;
+            index += 1;
+            match pipeline.process(&frame) {
+                Ok(v) => {
+                    let mut json = v.to_json();
+                    if let Some(p) = camera.last_path() {
+                        json["source"] = serde_json::Value::from(p.display().to_string());
+                    }
+                    writeln!(out, "{json}").context("writing to stdout")?;
+                }
+                Err(e) => {
+                    let name = camera
+                        .last_path()
+                        .map(|p| p.display().to_string())
+                        .unwrap_or_default();
+                    eprintln!("rover-terrain: {name}: {e}");
+                    failed = true;
+                }
+            }
+        }
+    }
+    out.flush().context("writing to stdout")?;
+    Ok(if failed {
+        ExitCode::from(EXIT_FAILURE)
+    } else {
+        ExitCode::SUCCESS
+    })
+}

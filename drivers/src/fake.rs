@@ -178,7 +178,9 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let f = DepthFrame::from_pixels(1, 1, vec![5]);
         std::fs::write(dir.path().join("a.png"), encode_png_depth(&f)).unwrap();
-        let mut cam = FakeCamera::open(&dir.path().join("a.png")).unwrap().looping(true);
+        let mut cam = FakeCamera::open(&dir.path().join("a.png"))
+            .unwrap()
+            .looping(true);
         let mut f = DepthFrame::default();
         for seq in 0..3 {
             assert_eq!(cam.next_frame(&mut f).unwrap(), FrameStatus::Frame);
@@ -203,7 +205,8 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let reg = Registration::LIBFREENECT_DEFAULT;
         let mut w = SessionWriter::create(dir.path(), Some(reg)).unwrap();
-        let mut frame = DepthFrame::from_pixels(4, 2, vec![0, 800, 1000, 1500, 2000, 2500, 3000, 0]);
+        let mut frame =
+            DepthFrame::from_pixels(4, 2, vec![0, 800, 1000, 1500, 2000, 2500, 3000, 0]);
         w.write_depth(&frame, 100.5, 7).unwrap();
         frame.pixels_mut()[0] = 900;
         w.write_depth(&frame, 100.6, 8).unwrap();
@@ -220,7 +223,10 @@ mod tests {
             } else {
                 // Within one disparity step of the Kinect at that range.
                 let step = 1.0e-5 * f64::from(*want).powi(2) + 3.0;
-                assert!((f64::from(*got) - f64::from(*want)).abs() <= step, "{got} vs {want}");
+                assert!(
+                    (f64::from(*got) - f64::from(*want)).abs() <= step,
+                    "{got} vs {want}"
+                );
             }
         }
     }
@@ -230,7 +236,10 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("INDEX.txt"), "d-1.000000-1.pgm\n").unwrap();
         let e = FakeCamera::open(dir.path()).unwrap_err().to_string();
-        assert!(e.contains("d-1.000000-1.pgm") && e.contains("INDEX.txt"), "{e}");
+        assert!(
+            e.contains("d-1.000000-1.pgm") && e.contains("INDEX.txt"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -242,9 +251,16 @@ mod tests {
 
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("INDEX.txt"), "d-1.0-1.pgm\n").unwrap();
-        std::fs::write(dir.path().join("d-1.0-1.pgm"), b"P5 640 480 65535\n\x01\x02").unwrap();
+        std::fs::write(
+            dir.path().join("d-1.0-1.pgm"),
+            b"P5 640 480 65535\n\x01\x02",
+        )
+        .unwrap();
         let mut cam = FakeCamera::open(dir.path()).unwrap();
-        let e = cam.next_frame(&mut DepthFrame::default()).unwrap_err().to_string();
+        let e = cam
+            .next_frame(&mut DepthFrame::default())
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("d-1.0-1.pgm") && e.contains("truncated"), "{e}");
     }
 

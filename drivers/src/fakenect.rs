@@ -237,8 +237,7 @@ impl Session {
         }
         let device = dir.join("device.json");
         let registration = if device.is_file() {
-            let text =
-                std::fs::read_to_string(&device).map_err(|e| DriverError::io(&device, e))?;
+            let text = std::fs::read_to_string(&device).map_err(|e| DriverError::io(&device, e))?;
             Some(Registration::from_device_json(&text, &device)?)
         } else {
             None
@@ -348,14 +347,9 @@ impl SessionWriter {
         timestamp: u32,
     ) -> Result<(), DriverError> {
         let name = format!("d-{time_s:.6}-{timestamp}.pgm");
-        let mut bytes =
-            format!("P5 {} {} 65535\n", frame.width(), frame.height()).into_bytes();
+        let mut bytes = format!("P5 {} {} 65535\n", frame.width(), frame.height()).into_bytes();
         for &mm in frame.pixels() {
-            let raw = self
-                .to_raw
-                .get(mm as usize)
-                .copied()
-                .unwrap_or(RAW_NO_DATA);
+            let raw = self.to_raw.get(mm as usize).copied().unwrap_or(RAW_NO_DATA);
             bytes.extend_from_slice(&raw.to_le_bytes());
         }
         let path = self.dir.join(&name);
@@ -402,7 +396,10 @@ mod tests {
         for mm in [700u16, 1000, 1500, 2500, 3500] {
             let back = t.convert(t.raw_for_mm(mm));
             let step = 1.0e-5 * f64::from(mm) * f64::from(mm) + 3.0; // ~quantisation step
-            assert!((f64::from(back) - f64::from(mm)).abs() <= step, "{mm} -> {back}");
+            assert!(
+                (f64::from(back) - f64::from(mm)).abs() <= step,
+                "{mm} -> {back}"
+            );
         }
         assert_eq!(t.raw_for_mm(0), RAW_NO_DATA);
     }
@@ -422,10 +419,17 @@ mod tests {
     fn device_json_round_trip_and_errors() {
         let reg = Registration::LIBFREENECT_DEFAULT;
         let p = Path::new("device.json");
-        assert_eq!(Registration::from_device_json(&reg.to_device_json(), p).unwrap(), reg);
-        let e = Registration::from_device_json("{", p).unwrap_err().to_string();
+        assert_eq!(
+            Registration::from_device_json(&reg.to_device_json(), p).unwrap(),
+            reg
+        );
+        let e = Registration::from_device_json("{", p)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("invalid JSON"), "{e}");
-        let e = Registration::from_device_json("{}", p).unwrap_err().to_string();
+        let e = Registration::from_device_json("{}", p)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("zero_plane_info"), "{e}");
     }
 }

@@ -37,7 +37,11 @@ impl DepthFrame {
     /// # Panics
     /// If `depth_mm.len() != width * height`.
     pub fn from_pixels(width: usize, height: usize, depth_mm: Vec<u16>) -> Self {
-        assert_eq!(depth_mm.len(), width * height, "pixel count must be width*height");
+        assert_eq!(
+            depth_mm.len(),
+            width * height,
+            "pixel count must be width*height"
+        );
         DepthFrame {
             width,
             height,

@@ -104,7 +104,12 @@ pub fn parse_pgm_header(bytes: &[u8], path: &Path) -> Result<PgmHeader, DriverEr
                 "PGM header: expected one whitespace byte after maxval",
             ))
         }
-        None => return Err(DriverError::malformed(path, "PGM truncated after the header")),
+        None => {
+            return Err(DriverError::malformed(
+                path,
+                "PGM truncated after the header",
+            ))
+        }
     }
     let [width, height, maxval] = fields;
     check_dimensions(width, height, path)?;
@@ -320,7 +325,10 @@ mod tests {
 
     #[test]
     fn reads_big_endian_pgm_with_comments() {
-        let bytes = pgm("P5\n# made by hand\n2 1\n65535\n", &[0x01, 0x02, 0xff, 0x00]);
+        let bytes = pgm(
+            "P5\n# made by hand\n2 1\n65535\n",
+            &[0x01, 0x02, 0xff, 0x00],
+        );
         let mut f = DepthFrame::default();
         decode_pgm_depth(&bytes, ByteOrder::BigEndian, p(), &mut f).unwrap();
         assert_eq!((f.width(), f.height()), (2, 1));

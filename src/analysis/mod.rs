@@ -1,0 +1,235 @@
+//! Terrain analysis over the ground cells of one frame: pure functions over plain
+//! data, no I/O. [`Analyzer`] holds what is fixed per configuration (which strips are
+//! tracks or belly, which cells the camera should see) and scratch space sized once,
+//! so analysing a frame allocates nothing.
+
+mod crossing;
+mod feature;
+pub mod plane;
+mod visibility;
+
+use std::time::Instant;
+
+use crate::config::Config;
+use crate::grid::{Cell, GridSpec, VoxelGrid};
+use crate::projection::Projector;
+use crate::verdict::{Decision, Hazard, HazardKind, Side, Verdict};
+use crate::Error;
+
+/// Which lateral band of the corridor a strip of cells lies in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Region {
+    /// Right wheel track: `−track_outer ≤ y ≤ −belly_half_width`.
+    Right,
+    /// Under the belly: `|y| < belly_half_width`.
+    Belly,
+    /// Left wheel track: `belly_half_width ≤ y ≤ track_outer`.
+    Left,
+}
+
+impl Region {
+    /// The hazard side of this region.
+    pub fn side(self) -> Side {
+        match self {
+            Region::Right => Side::Right,
+            Region::Belly => Side::Centre,
+            Region::Left => Side::Left,
+        }
+    }
+}
+
+/// Per-frame analysis state, sized once from the configuration.
+#[derive(Debug, Clone)]
+pub struct Analyzer {
+    cfg: Config,
+    spec: GridSpec,
+    region: Vec<Region>,
+    expected: Vec<bool>,
+    expected_count: usize,
+    camera: [f32; 3],
+    // Scratch, reused every frame.
+    seen: Vec<bool>,
+    shadowed: Vec<bool>,
+    strip: Vec<(f32, f32)>,
+    values: Vec<f32>,
+    track_ref: Vec<[f32; 2]>,
+    onset: Vec<Option<feature::Onset>>,
+    use_cell: Vec<bool>,
+}
+
+/// Everything the analysis functions read about one frame.
+pub(crate) struct Frame<'a> {
+    pub spec: &'a GridSpec,
+    pub cells: &'a [Cell],
+    pub seen: &'a [bool],
+    /// Expected, unseen, and in the shadow of something seen (see
+    /// [`visibility::explained`]).
+    pub shadowed: &'a [bool],
+    pub expected: &'a [bool],
+    pub region: &'a [Region],
+    pub cfg: &'a Config,
+    pub camera: [f32; 3],
+}
+
+impl Frame<'_> {
+    /// Strips (iy) of one region.
+    pub fn strips(&self, r: Region) -> impl Iterator<Item = usize> + '_ {
+        self.region
+            .iter()
+            .enumerate()
+            .filter(move |(_, &q)| q == r)
+            .map(|(i, _)| i)
+    }
+}
+
+impl Analyzer {
+    /// Prepare the analysis for `config`'s corridor as seen through `projector`.
+    /// Fails when the camera, as mounted, sees none of the corridor.
+    pub fn new(config: &Config, spec: GridSpec, projector: &Projector) -> Result<Self, Error> {
+        let bhw = config.rover.belly_half_width_m as f32;
+        let region: Vec<Region> = (0..spec.ny)
+            .map(|iy| {
+                let y = spec.y_centre(iy);
+                if y.abs() < bhw {
+                    Region::Belly
+                } else if y > 0.0 {
+                    Region::Left
+                } else {
+                    Region::Right
+                }
+            })
+            .collect();
+        let expected = visibility::expected_cells(&spec, projector, config);
+        let expected_count = expected.iter().filter(|&&e| e).count();
+        if expected_count == 0 {
+            return Err(Error::Setup(
+                "the camera, as mounted, sees none of the corridor on flat ground; check [mount] and [camera]".into(),
+            ));
+        }
+        Ok(Analyzer {
+            cfg: config.clone(),
+            spec,
+            region,
+            expected,
+            expected_count,
+            camera: projector.origin(),
+            seen: vec![false; spec.cell_count()],
+            shadowed: vec![false; spec.cell_count()],
+            strip: Vec::with_capacity(spec.nx),
+            values: Vec::with_capacity(spec.ny),
+            track_ref: vec![[f32::NAN; 2]; spec.nx],
+            onset: vec![None; spec.ny],
+            use_cell: vec![false; spec.cell_count()],
+        })
+    }
+
+    /// Cells the camera should see on flat ground, indexed by [`GridSpec::cell`].
+    pub fn expected(&self) -> &[bool] {
+        &self.expected
+    }
+
+    /// The region of each strip iy.
+    pub fn regions(&self) -> &[Region] {
+        &self.region
+    }
+
+    /// Analyse the grid's cells into `verdict` (decision, feature, hazards, seen
+    /// fraction, crossing and feature timings).
+    pub fn analyze(&mut self, grid: &VoxelGrid, verdict: &mut Verdict) {
+        let t0 = Instant::now();
+        verdict.hazards.clear();
+        verdict.feature = None;
+        let min_pts = self.cfg.analysis.min_points_per_cell;
+        let mut seen_expected = 0usize;
+        let mut nearest_unseen = f32::INFINITY;
+        for (i, (s, c)) in self.seen.iter_mut().zip(grid.cells()).enumerate() {
+            *s = c.n >= min_pts;
+            if self.expected[i] {
+                if *s {
+                    seen_expected += 1;
+                } else {
+                    let ix = i / self.spec.ny;
+                    nearest_unseen = nearest_unseen.min(ix as f32 * self.spec.voxel_m);
+                }
+            }
+        }
+        verdict.seen_fraction = seen_expected as f32 / self.expected_count as f32;
+        // Unseen cells hidden behind something seen: the camera could not see them.
+        let mut shadowed_count = 0usize;
+        {
+            let probe = Frame {
+                spec: &self.spec,
+                cells: grid.cells(),
+                seen: &self.seen,
+                shadowed: &[],
+                expected: &self.expected,
+                region: &self.region,
+                cfg: &self.cfg,
+                camera: self.camera,
+            };
+            for (i, s) in self.shadowed.iter_mut().enumerate() {
+                let (ix, iy) = (i / self.spec.ny, i % self.spec.ny);
+                *s =
+                    self.expected[i] && !self.seen[i] && visibility::explained(&probe, ix, iy, 0.0);
+                shadowed_count += usize::from(*s);
+            }
+        }
+        let visible = self.expected_count - shadowed_count;
+        let seen_of_visible = if visible == 0 {
+            0.0
+        } else {
+            seen_expected as f32 / visible as f32
+        };
+        let frame = Frame {
+            spec: &self.spec,
+            cells: grid.cells(),
+            seen: &self.seen,
+            shadowed: &self.shadowed,
+            expected: &self.expected,
+            region: &self.region,
+            cfg: &self.cfg,
+            camera: self.camera,
+        };
+        crossing::steps_and_slopes(&frame, &mut self.strip, verdict);
+        crossing::belly(&frame, &mut self.values, &mut self.track_ref, verdict);
+        crossing::gaps(&frame, verdict);
+        let t1 = Instant::now();
+        verdict.timing_us.crossing = (t1 - t0).as_secs_f32() * 1e6;
+
+        let stop = verdict
+            .hazards
+            .iter()
+            .any(|h| h.kind != HazardKind::Unknown);
+        // Too little seen of what nothing hides: the camera is blind, not occluded.
+        let too_little = seen_of_visible < self.cfg.analysis.min_seen_fraction as f32;
+        if too_little {
+            verdict.add_hazard(Hazard {
+                kind: HazardKind::Unknown,
+                side: Side::Centre,
+                distance_m: if nearest_unseen.is_finite() {
+                    nearest_unseen
+                } else {
+                    0.0
+                },
+            });
+        }
+        verdict
+            .hazards
+            .sort_unstable_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
+        verdict.decision = if stop {
+            Decision::Stop
+        } else if too_little || !verdict.hazards.is_empty() {
+            Decision::Unknown
+        } else {
+            Decision::Go
+        };
+        if verdict.decision == Decision::Go {
+            verdict.feature = Some(feature::analyse(
+                &frame,
+                &mut self.onset,
+                &mut self.use_cell,
+            ));
+        }
+        verdict.timing_us.feature = t1.elapsed().as_secs_f32() * 1e6;
+    }
+}

@@ -1,0 +1,490 @@
+//! The service configuration: a TOML file where every key has a default (the paper's
+//! rover and a Kinect v1), so a file may set any subset. `config/rover-terrain.toml`
+//! documents every key. Angles are degrees, lengths metres.
+
+use std::path::Path;
+
+use serde::Deserialize;
+
+use crate::Error;
+
+/// The whole configuration.
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Config {
+    /// The depth camera's image and optics.
+    pub camera: CameraConfig,
+    /// Where the camera sits on the rover.
+    pub mount: MountConfig,
+    /// The rover's geometry and climbing limits.
+    pub rover: RoverConfig,
+    /// Voxel grid and analysis parameters.
+    pub analysis: AnalysisConfig,
+}
+
+/// `[camera]`: the image the camera is expected to deliver and how pixels map to rays.
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CameraConfig {
+    /// Expected image width, pixels.
+    pub width: u32,
+    /// Expected image height, pixels.
+    pub height: u32,
+    /// Horizontal field of view, degrees (the paper's model, eq. 1-4).
+    pub hfov_deg: f64,
+    /// Vertical field of view, degrees.
+    pub vfov_deg: f64,
+    /// Depths nearer than this are discarded, metres.
+    pub min_range_m: f64,
+    /// Depths farther than this are discarded, metres.
+    pub max_range_m: f64,
+    /// Pinhole focal length along u, pixels; with fy, cx, cy replaces the FOV model.
+    pub fx: Option<f64>,
+    /// Pinhole focal length along v, pixels.
+    pub fy: Option<f64>,
+    /// Pinhole principal point u, pixels.
+    pub cx: Option<f64>,
+    /// Pinhole principal point v, pixels.
+    pub cy: Option<f64>,
+}
+
+/// `[mount]`: the camera's pose in the rover body frame (REP 103: x forward, y left,
+/// z up, origin on the ground).
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MountConfig {
+    /// Forward offset of the camera, metres.
+    pub x_m: f64,
+    /// Left offset of the camera, metres.
+    pub y_m: f64,
+    /// Height of the camera above the ground, metres.
+    pub z_m: f64,
+    /// Roll about the forward axis, degrees (positive = left side up).
+    pub roll_deg: f64,
+    /// Pitch, degrees (positive = looking down).
+    pub pitch_deg: f64,
+    /// Yaw, degrees (positive = looking left).
+    pub yaw_deg: f64,
+}
+
+/// `[rover]`: the rover's geometry and what it can climb.
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RoverConfig {
+    /// Wheel radius, metres: a step higher than this is impassable.
+    pub wheel_radius_m: f64,
+    /// Belly clearance, metres: anything taller under the belly is impassable.
+    pub belly_clearance_m: f64,
+    /// Steepest slope the wheels can climb, degrees.
+    pub max_slope_deg: f64,
+    /// Half-width of the band under the belly, metres (|y| below it).
+    pub belly_half_width_m: f64,
+    /// Outer edge of the wheel tracks, metres (tracks span belly_half_width..this).
+    pub track_outer_m: f64,
+}
+
+/// `[analysis]`: voxel grid and analysis parameters.
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AnalysisConfig {
+    /// Voxel edge, metres.
+    pub voxel_m: f64,
+    /// Length of the analysed corridor ahead of the rover origin, metres.
+    pub corridor_length_m: f64,
+    /// Lowest height kept in the voxel grid, metres.
+    pub z_min_m: f64,
+    /// Highest height kept in the voxel grid, metres.
+    pub z_max_m: f64,
+    /// Height above or below the ground that counts as a rise or fall, metres.
+    pub rise_threshold_m: f64,
+    /// A toe line more than this off the lateral axis is "diagonal", degrees.
+    pub diagonal_min_deg: f64,
+    /// Fewer points than this in a ground cell and the cell counts as unseen.
+    pub min_points_per_cell: u32,
+    /// Below this fraction of the visible corridor seen, the verdict is unknown.
+    pub min_seen_fraction: f64,
+    /// Unseen cells in a row along a strip that make a gap (drop-off or unknown).
+    pub gap_min_cells: u32,
+}
+
+impl Default for CameraConfig {
+    fn default() -> Self {
+        CameraConfig {
+            width: 640,
+            height: 480,
+            hfov_deg: 57.0,
+            vfov_deg: 43.0,
+            min_range_m: 0.4,
+            max_range_m: 4.5,
+            fx: None,
+            fy: None,
+            cx: None,
+            cy: None,
+        }
+    }
+}
+
+impl Default for MountConfig {
+    fn default() -> Self {
+        MountConfig {
+            x_m: 0.0,
+            y_m: 0.0,
+            z_m: 0.8,
+            roll_deg: 0.0,
+            pitch_deg: 30.0,
+            yaw_deg: 0.0,
+        }
+    }
+}
+
+impl Default for RoverConfig {
+    fn default() -> Self {
+        RoverConfig {
+            wheel_radius_m: 0.11,
+            belly_clearance_m: 0.32,
+            max_slope_deg: 30.0,
+            belly_half_width_m: 0.2,
+            track_outer_m: 0.7,
+        }
+    }
+}
+
+impl Default for AnalysisConfig {
+    fn default() -> Self {
+        AnalysisConfig {
+            voxel_m: 0.05,
+            corridor_length_m: 3.0,
+            z_min_m: -1.5,
+            z_max_m: 2.0,
+            rise_threshold_m: 0.03,
+            diagonal_min_deg: 8.0,
+            min_points_per_cell: 3,
+            min_seen_fraction: 0.5,
+            gap_min_cells: 2,
+        }
+    }
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Config {
+            camera: CameraConfig::default(),
+            mount: MountConfig::default(),
+            rover: RoverConfig::default(),
+            analysis: AnalysisConfig::default(),
+        }
+    }
+}
+
+/// Largest voxel grid accepted, in voxels (keeps a bad config from eating memory).
+pub const MAX_VOXELS: usize = 16 * 1024 * 1024;
+
+impl Config {
+    /// Parse and validate TOML text; `origin` names the file in errors.
+    pub fn from_toml(text: &str, origin: &str) -> Result<Self, Error> {
+        let config: Config = toml::from_str(text).map_err(|e| Error::Config {
+            message: format!("{origin}: {}", e.to_string().trim_end()),
+        })?;
+        config.validate().map_err(|(key, why)| {
+            let line = find_key_line(text, key)
+                .map(|l| format!(", line {l}"))
+                .unwrap_or_default();
+            Error::Config {
+                message: format!("{origin}{line}: {key}: {why}"),
+            }
+        })?;
+        Ok(config)
+    }
+
+    /// Read, parse and validate a config file.
+    pub fn load(path: &Path) -> Result<Self, Error> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::Config {
+            message: format!("{}: {e}", path.display()),
+        })?;
+        Self::from_toml(&text, &path.display().to_string())
+    }
+
+    /// Whether the camera uses pinhole intrinsics rather than the FOV model.
+    pub fn pinhole(&self) -> Option<(f64, f64, f64, f64)> {
+        let c = &self.camera;
+        match (c.fx, c.fy, c.cx, c.cy) {
+            (Some(fx), Some(fy), Some(cx), Some(cy)) => Some((fx, fy, cx, cy)),
+            _ => None,
+        }
+    }
+
+    /// Check every value; on failure, the dotted key and what is wrong.
+    pub fn validate(&self) -> Result<(), (&'static str, String)> {
+        fn finite(key: &'static str, v: f64) -> Result<(), (&'static str, String)> {
+            if v.is_finite() {
+                Ok(())
+            } else {
+                Err((key, format!("must be a finite number, got {v}")))
+            }
+        }
+        fn positive(key: &'static str, v: f64) -> Result<(), (&'static str, String)> {
+            finite(key, v)?;
+            if v > 0.0 {
+                Ok(())
+            } else {
+                Err((key, format!("must be positive, got {v}")))
+            }
+        }
+        let c = &self.camera;
+        if c.width == 0 || c.width as usize > rover_terrain_drivers::MAX_WIDTH {
+            return Err((
+                "camera.width",
+                format!(
+                    "must be 1..={}, got {}",
+                    rover_terrain_drivers::MAX_WIDTH,
+                    c.width
+                ),
+            ));
+        }
+        if c.height == 0 || c.height as usize > rover_terrain_drivers::MAX_HEIGHT {
+            return Err((
+                "camera.height",
+                format!(
+                    "must be 1..={}, got {}",
+                    rover_terrain_drivers::MAX_HEIGHT,
+                    c.height
+                ),
+            ));
+        }
+        for (key, fov) in [
+            ("camera.hfov_deg", c.hfov_deg),
+            ("camera.vfov_deg", c.vfov_deg),
+        ] {
+            positive(key, fov)?;
+            if fov >= 180.0 {
+                return Err((key, format!("must be below 180, got {fov}")));
+            }
+        }
+        positive("camera.min_range_m", c.min_range_m)?;
+        positive("camera.max_range_m", c.max_range_m)?;
+        if c.min_range_m >= c.max_range_m {
+            return Err((
+                "camera.min_range_m",
+                format!(
+                    "must be below camera.max_range_m ({} >= {})",
+                    c.min_range_m, c.max_range_m
+                ),
+            ));
+        }
+        let pin = [
+            ("camera.fx", c.fx),
+            ("camera.fy", c.fy),
+            ("camera.cx", c.cx),
+            ("camera.cy", c.cy),
+        ];
+        let given = pin.iter().filter(|(_, v)| v.is_some()).count();
+        if given != 0 && given != 4 {
+            let missing = pin
+                .iter()
+                .find(|(_, v)| v.is_none())
+                .map(|(k, _)| *k)
+                .unwrap_or("camera.fx");
+            return Err((
+                missing,
+                "pinhole intrinsics need all of fx, fy, cx, cy".into(),
+            ));
+        }
+        for (key, v) in pin {
+            if let Some(v) = v {
+                finite(key, v)?;
+            }
+        }
+        if let Some((fx, fy, _, _)) = self.pinhole() {
+            positive("camera.fx", fx)?;
+            positive("camera.fy", fy)?;
+        }
+        let m = &self.mount;
+        for (key, v) in [
+            ("mount.x_m", m.x_m),
+            ("mount.y_m", m.y_m),
+            ("mount.roll_deg", m.roll_deg),
+            ("mount.pitch_deg", m.pitch_deg),
+            ("mount.yaw_deg", m.yaw_deg),
+        ] {
+            finite(key, v)?;
+        }
+        positive("mount.z_m", m.z_m)?;
+        for (key, v) in [
+            ("mount.roll_deg", m.roll_deg),
+            ("mount.pitch_deg", m.pitch_deg),
+            ("mount.yaw_deg", m.yaw_deg),
+        ] {
+            if v.abs() > 90.0 {
+                return Err((key, format!("must be within ±90, got {v}")));
+            }
+        }
+        let r = &self.rover;
+        positive("rover.wheel_radius_m", r.wheel_radius_m)?;
+        positive("rover.belly_clearance_m", r.belly_clearance_m)?;
+        positive("rover.max_slope_deg", r.max_slope_deg)?;
+        if r.max_slope_deg >= 90.0 {
+            return Err((
+                "rover.max_slope_deg",
+                format!("must be below 90, got {}", r.max_slope_deg),
+            ));
+        }
+        positive("rover.belly_half_width_m", r.belly_half_width_m)?;
+        positive("rover.track_outer_m", r.track_outer_m)?;
+        if r.track_outer_m <= r.belly_half_width_m {
+            return Err((
+                "rover.track_outer_m",
+                format!(
+                    "must exceed rover.belly_half_width_m ({} <= {})",
+                    r.track_outer_m, r.belly_half_width_m
+                ),
+            ));
+        }
+        let a = &self.analysis;
+        positive("analysis.voxel_m", a.voxel_m)?;
+        positive("analysis.corridor_length_m", a.corridor_length_m)?;
+        finite("analysis.z_min_m", a.z_min_m)?;
+        finite("analysis.z_max_m", a.z_max_m)?;
+        if a.z_min_m >= a.z_max_m {
+            return Err((
+                "analysis.z_min_m",
+                format!(
+                    "must be below analysis.z_max_m ({} >= {})",
+                    a.z_min_m, a.z_max_m
+                ),
+            ));
+        }
+        positive("analysis.rise_threshold_m", a.rise_threshold_m)?;
+        finite("analysis.diagonal_min_deg", a.diagonal_min_deg)?;
+        if !(0.0..90.0).contains(&a.diagonal_min_deg) {
+            return Err((
+                "analysis.diagonal_min_deg",
+                format!("must be within 0..90, got {}", a.diagonal_min_deg),
+            ));
+        }
+        if a.min_points_per_cell == 0 {
+            return Err(("analysis.min_points_per_cell", "must be at least 1".into()));
+        }
+        finite("analysis.min_seen_fraction", a.min_seen_fraction)?;
+        if !(0.0..=1.0).contains(&a.min_seen_fraction) {
+            return Err((
+                "analysis.min_seen_fraction",
+                format!("must be within 0..=1, got {}", a.min_seen_fraction),
+            ));
+        }
+        if a.gap_min_cells == 0 {
+            return Err(("analysis.gap_min_cells", "must be at least 1".into()));
+        }
+        let cells = |len: f64| (len / a.voxel_m).ceil();
+        let voxels = cells(a.corridor_length_m)
+            * cells(2.0 * r.track_outer_m)
+            * cells(a.z_max_m - a.z_min_m);
+        if voxels > MAX_VOXELS as f64 {
+            return Err((
+                "analysis.voxel_m",
+                format!("the voxel grid would hold {voxels:.0} voxels (at most {MAX_VOXELS}); use larger voxels or a shorter corridor"),
+            ));
+        }
+        if a.voxel_m > r.belly_half_width_m {
+            return Err((
+                "analysis.voxel_m",
+                format!(
+                    "must not exceed rover.belly_half_width_m ({})",
+                    r.belly_half_width_m
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The 1-based line where `section.key` is set in `text`, if it is set there.
+fn find_key_line(text: &str, dotted: &str) -> Option<usize> {
+    let (section, key) = dotted.split_once('.')?;
+    let mut current = "";
+    for (n, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if let Some(rest) = t.strip_prefix('[') {
+            current = rest.split(']').next().unwrap_or("").trim();
+            continue;
+        }
+        if current == section {
+            if let Some((k, _)) = t.split_once('=') {
+                if k.trim() == key {
+                    return Some(n + 1);
+                }
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn err(text: &str) -> String {
+        Config::from_toml(text, "test.toml")
+            .unwrap_err()
+            .to_string()
+    }
+
+    #[test]
+    fn empty_file_is_the_default() {
+        assert_eq!(Config::from_toml("", "x").unwrap(), Config::default());
+    }
+
+    #[test]
+    fn subset_overrides_only_what_it_sets() {
+        let c = Config::from_toml("[mount]\npitch_deg = 40\n", "x").unwrap();
+        assert_eq!(c.mount.pitch_deg, 40.0);
+        assert_eq!(c.mount.z_m, 0.8);
+        assert_eq!(c.rover, RoverConfig::default());
+    }
+
+    #[test]
+    fn bad_values_name_the_key_and_line() {
+        let e = err("[camera]\nwidth = 640\nhfov_deg = 180\n");
+        assert!(e.contains("line 3") && e.contains("camera.hfov_deg"), "{e}");
+        let e = err("[analysis]\n\nvoxel_m = -0.05\n");
+        assert!(
+            e.contains("line 3") && e.contains("analysis.voxel_m") && e.contains("positive"),
+            "{e}"
+        );
+        let e = err("[camera]\nmin_range_m = 5\nmax_range_m = 4\n");
+        assert!(
+            e.contains("camera.min_range_m") && e.contains("line 2"),
+            "{e}"
+        );
+        let e = err("[rover]\nwheel_radius_m = 0\n");
+        assert!(e.contains("rover.wheel_radius_m"), "{e}");
+        let e = err("[camera]\nfx = 500\n");
+        assert!(e.contains("pinhole"), "{e}");
+        let e = err("[analysis]\nvoxel_m = 0.0001\n");
+        assert!(e.contains("voxels"), "{e}");
+        let e = err("[analysis]\nmin_seen_fraction = 1.5\n");
+        assert!(e.contains("analysis.min_seen_fraction"), "{e}");
+        let e = err("[camera]\nhfov_deg = nan\n");
+        assert!(e.contains("finite"), "{e}");
+    }
+
+    #[test]
+    fn unknown_keys_wrong_types_and_syntax_errors_name_the_place() {
+        let e = err("[camera]\nwidht = 640\n");
+        assert!(e.contains("widht") && e.contains("line 2"), "{e}");
+        let e = err("[camera]\nwidth = \"wide\"\n");
+        assert!(e.contains("width") && e.contains("line 2"), "{e}");
+        let e = err("[camera\n");
+        assert!(e.contains("line 1"), "{e}");
+        let e = err("[sonar]\nx = 1\n");
+        assert!(e.contains("sonar"), "{e}");
+    }
+
+    #[test]
+    fn the_documented_config_file_is_valid_and_is_the_default() {
+        let text = include_str!("../config/rover-terrain.toml");
+        assert_eq!(
+            Config::from_toml(text, "config/rover-terrain.toml").unwrap(),
+            Config::default()
+        );
+    }
+}

@@ -1,0 +1,25 @@
+//! rover-terrain: a planetary rover's eyes for the ground ahead.
+//!
+//! A depth frame (u16 millimetres) is projected into a point cloud, moved into the
+//! rover frame (REP 103: x forward, y left, z up, metres, origin on the ground),
+//! binned into a dense voxel grid over the corridor ahead, and analysed: can the
+//! terrain be crossed (paper §3.1), and which obstacle feature lies ahead (§3.2). The
+//! result is a [`Verdict`]. Angles are degrees, lengths metres, unless a name says
+//! otherwise.
+#![deny(missing_docs)]
+
+pub mod analysis;
+pub mod bench;
+pub mod config;
+mod error;
+pub mod grid;
+pub mod pipeline;
+pub mod projection;
+pub mod sim;
+pub mod validate;
+pub mod verdict;
+
+pub use config::Config;
+pub use error::Error;
+pub use pipeline::Pipeline;
+pub use verdict::{Decision, Feature, Hazard, HazardKind, Side, Verdict};

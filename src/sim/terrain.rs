@@ -1,0 +1,213 @@
+use serde::{Deserialize, Serialize};
+
+/// Which part of the width an element covers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Extent {
+    /// The whole width.
+    Full,
+    /// Only y ≥ 0 (the left half).
+    Left,
+    /// Only y ≤ 0 (the right half).
+    Right,
+}
+
+impl Extent {
+    fn covers(self, y: f64) -> bool {
+        match self {
+            Extent::Full => true,
+            Extent::Left => y >= 0.0,
+            Extent::Right => y <= 0.0,
+        }
+    }
+}
+
+/// One terrain element; heights add up over flat ground at z = 0.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Element {
+    /// A planar face from a straight toe line: it rises (gradient > 0) or falls
+    /// (gradient < 0) across the line, up to `cap_m` in height if given.
+    Ramp {
+        /// Forward distance of the toe line at `ref_y_m`, metres.
+        toe_x_m: f64,
+        /// Lateral position where `toe_x_m` is measured, metres.
+        ref_y_m: f64,
+        /// Steepest slope across the toe line, degrees, negative downhill.
+        gradient_deg: f64,
+        /// Angle of the toe line to the lateral axis, degrees, positive when its
+        /// left end is nearer.
+        alpha_deg: f64,
+        /// Which part of the width the face covers.
+        extent: Extent,
+        /// Largest height change of the face, metres (a plateau beyond).
+        cap_m: Option<f64>,
+    },
+    /// A vertical step up (height > 0) or down at `x_m`.
+    Step {
+        /// Forward distance of the step, metres.
+        x_m: f64,
+        /// Height change, metres.
+        height_m: f64,
+        /// Which part of the width it covers.
+        extent: Extent,
+    },
+    /// A box standing on the ground.
+    Block {
+        /// Near edge, metres forward.
+        x_m: f64,
+        /// Centre, metres left.
+        y_m: f64,
+        /// Length along x, metres.
+        length_m: f64,
+        /// Width along y, metres.
+        width_m: f64,
+        /// Height, metres.
+        height_m: f64,
+    },
+    /// A rock: a half-ellipsoid on the ground.
+    Rock {
+        /// Centre, metres forward.
+        x_m: f64,
+        /// Centre, metres left.
+        y_m: f64,
+        /// Radius on the ground, metres.
+        radius_m: f64,
+        /// Height, metres.
+        height_m: f64,
+    },
+    /// The ground ends at `x_m` and continues `depth_m` lower.
+    DropOff {
+        /// Forward distance of the edge, metres.
+        x_m: f64,
+        /// How far the ground falls, metres.
+        depth_m: f64,
+    },
+}
+
+impl Element {
+    fn height(&self, x: f64, y: f64) -> f64 {
+        match *self {
+            Element::Ramp {
+                toe_x_m,
+                ref_y_m,
+                gradient_deg,
+                alpha_deg,
+                extent,
+                cap_m,
+            } => {
+                if !extent.covers(y) {
+                    return 0.0;
+                }
+                let a = alpha_deg.to_radians();
+                let across = (x - toe_x_m) * a.cos() + (y - ref_y_m) * a.sin();
+                if across <= 0.0 {
+                    return 0.0;
+                }
+                let h = across * gradient_deg.to_radians().tan();
+                match cap_m {
+                    Some(cap) => h.clamp(-cap, cap),
+                    None => h,
+                }
+            }
+            Element::Step {
+                x_m,
+                height_m,
+                extent,
+            } => {
+                if extent.covers(y) && x >= x_m {
+                    height_m
+                } else {
+                    0.0
+                }
+            }
+            Element::Block {
+                x_m,
+                y_m,
+                length_m,
+                width_m,
+                height_m,
+            } => {
+                if x >= x_m && x <= x_m + length_m && (y - y_m).abs() <= width_m / 2.0 {
+                    height_m
+                } else {
+                    0.0
+                }
+            }
+            Element::Rock {
+                x_m,
+                y_m,
+                radius_m,
+                height_m,
+            } => {
+                let r = (x - x_m).hypot(y - y_m) / radius_m;
+                if r < 1.0 {
+                    height_m * (1.0 - r * r).sqrt()
+                } else {
+                    0.0
+                }
+            }
+            Element::DropOff { x_m, depth_m } => {
+                if x >= x_m {
+                    -depth_m
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+
+    /// (lowest, highest) contribution, metres (unbounded ramps: what a 10 m run gives).
+    fn bounds(&self) -> (f64, f64) {
+        let h = match *self {
+            Element::Ramp {
+                gradient_deg,
+                cap_m,
+                ..
+            } => {
+                let run = 10.0 * gradient_deg.to_radians().tan();
+                match cap_m {
+                    Some(cap) => run.clamp(-cap, cap),
+                    None => run,
+                }
+            }
+            Element::Step { height_m, .. } => height_m,
+            Element::Block { height_m, .. } | Element::Rock { height_m, .. } => height_m,
+            Element::DropOff { depth_m, .. } => -depth_m,
+        };
+        (h.min(0.0), h.max(0.0))
+    }
+}
+
+/// A height field: flat ground at z = 0 plus elements.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Terrain {
+    /// The elements, heights added.
+    pub elements: Vec<Element>,
+}
+
+impl Terrain {
+    /// Flat ground.
+    pub fn flat() -> Self {
+        Terrain::default()
+    }
+
+    /// Ground with these elements.
+    pub fn new(elements: Vec<Element>) -> Self {
+        Terrain { elements }
+    }
+
+    /// Ground height at (x, y), metres, rover frame.
+    pub fn height(&self, x: f64, y: f64) -> f64 {
+        self.elements.iter().map(|e| e.height(x, y)).sum()
+    }
+
+    /// Bounds on the height anywhere, metres.
+    pub fn bounds(&self) -> (f64, f64) {
+        self.elements.iter().fold((0.0, 0.0), |(lo, hi), e| {
+            let (a, b) = e.bounds();
+            (lo + a, hi + b)
+        })
+    }
+}

@@ -1,0 +1,194 @@
+//! What one analysed frame concludes: go / stop / unknown, the hazards that decided
+//! it, the obstacle feature (workcase and its measures), how much was seen.
+
+use serde::Serialize;
+
+/// The decision for the motor controller.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Decision {
+    /// The corridor ahead can be crossed.
+    Go,
+    /// A hazard makes the corridor impassable.
+    Stop,
+    /// Too little is known to say; the controller treats it as stop.
+    Unknown,
+}
+
+/// What kind of hazard was found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HazardKind {
+    /// A slope at or above the maximum in a wheel track.
+    Slope,
+    /// A step higher than the wheel radius in a wheel track.
+    Step,
+    /// Something taller than the belly clearance under the belly.
+    Belly,
+    /// The ground ends: unseen ground beyond an edge, or a fall deeper than a wheel
+    /// radius.
+    DropOff,
+    /// Ground the camera should see but does not.
+    Unknown,
+}
+
+/// Which part of the corridor a hazard is in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Side {
+    /// The left wheel track (y > 0).
+    Left,
+    /// The band under the belly, or the corridor as a whole.
+    Centre,
+    /// The right wheel track (y < 0).
+    Right,
+}
+
+/// One hazard: kind, side and forward distance from the rover origin.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Hazard {
+    /// What it is.
+    pub kind: HazardKind,
+    /// Where it is across the corridor.
+    pub side: Side,
+    /// Forward distance from the rover origin to its near edge, metres.
+    pub distance_m: f32,
+}
+
+/// The obstacle feature of a passable corridor (paper §3.2, ARCHITECTURE.md).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Feature {
+    /// 1 flat; 2 uphill; 3/5 uphill left/right only; 4/6 diagonal uphill left/right;
+    /// 7 diagonal uphill full width; 8 downhill; 9/10 downhill left/right.
+    pub workcase: u8,
+    /// Forward distance to the toe line, metres (at the centre line, or at the centre
+    /// of the affected track for one-sided cases).
+    pub distance_m: Option<f32>,
+    /// Steepest slope of the face across the toe line, degrees, negative downhill.
+    pub gradient_deg: Option<f32>,
+    /// Angle of the toe line to the lateral axis, degrees, positive when its left end
+    /// is nearer.
+    pub alpha_deg: Option<f32>,
+}
+
+impl Feature {
+    /// Flat ground.
+    pub const FLAT: Feature = Feature {
+        workcase: 1,
+        distance_m: None,
+        gradient_deg: None,
+        alpha_deg: None,
+    };
+}
+
+/// Most hazards a verdict carries: one per kind and side.
+pub const MAX_HAZARDS: usize = 16;
+
+/// Per-stage processing time of one frame, microseconds.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct StageTimes {
+    /// Projection, transform and voxel binning (one fused pass over the image).
+    pub bin: f32,
+    /// Voxel centroids and ground cells.
+    pub voxels: f32,
+    /// Crossing analysis: steps, slopes, belly, gaps and drop-offs.
+    pub crossing: f32,
+    /// Feature analysis: workcase and measures.
+    pub feature: f32,
+    /// The whole frame.
+    pub total: f32,
+}
+
+/// Everything one frame concludes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Verdict {
+    /// The frame's sequence number.
+    pub frame: u64,
+    /// Go, stop or unknown.
+    pub decision: Decision,
+    /// The obstacle feature; `None` unless the decision is go.
+    pub feature: Option<Feature>,
+    /// The hazards found, nearest first; the first decided a stop.
+    pub hazards: heapless::Vec<Hazard, MAX_HAZARDS>,
+    /// Fraction of the corridor cells the camera should see that it did see, 0..=1.
+    pub seen_fraction: f32,
+    /// Depth pixels inside the range limits.
+    pub points_in: u32,
+    /// Points that fell inside the voxel grid.
+    pub points_binned: u32,
+    /// Occupied voxels.
+    pub voxels: u32,
+    /// Processing time per stage.
+    pub timing_us: StageTimes,
+}
+
+impl Default for Verdict {
+    fn default() -> Self {
+        Verdict {
+            frame: 0,
+            decision: Decision::Unknown,
+            feature: None,
+            hazards: heapless::Vec::new(),
+            seen_fraction: 0.0,
+            points_in: 0,
+            points_binned: 0,
+            voxels: 0,
+            timing_us: StageTimes::default(),
+        }
+    }
+}
+
+impl Verdict {
+    /// Whether the rover may cross (the decision is go).
+    pub fn traversable(&self) -> bool {
+        self.decision == Decision::Go
+    }
+
+    /// Add a hazard, keeping only the nearest one per kind and side.
+    pub fn add_hazard(&mut self, h: Hazard) {
+        if let Some(old) = self
+            .hazards
+            .iter_mut()
+            .find(|o| o.kind == h.kind && o.side == h.side)
+        {
+            if h.distance_m < old.distance_m {
+                old.distance_m = h.distance_m;
+            }
+            return;
+        }
+        // One per kind and side: 5 × 3 < MAX_HAZARDS, so this cannot overflow.
+        let _ = self.hazards.push(h);
+    }
+
+    /// The verdict as one JSON object (the `analyze` output line).
+    pub fn to_json(&self) -> serde_json::Value {
+        let r4 = |v: f32| (f64::from(v) * 1e4).round() / 1e4;
+        let r3 = |v: f32| (f64::from(v) * 1e3).round() / 1e3;
+        let f = self.feature;
+        let hazards: Vec<_> = self
+            .hazards
+            .iter()
+            .map(|h| serde_json::json!({"kind": h.kind, "side": h.side, "distance_m": r4(h.distance_m)}))
+            .collect();
+        let t = self.timing_us;
+        let r1 = |v: f32| (f64::from(v) * 10.0).round() / 10.0;
+        serde_json::json!({
+            "frame": self.frame,
+            "verdict": self.decision,
+            "traversable": self.traversable(),
+            "workcase": f.map(|f| f.workcase),
+            "distance_m": f.and_then(|f| f.distance_m).map(r4),
+            "gradient_deg": f.and_then(|f| f.gradient_deg).map(r3),
+            "alpha_deg": f.and_then(|f| f.alpha_deg).map(r3),
+            "hazards": hazards,
+            "seen_fraction": r3(self.seen_fraction),
+            "points_in": self.points_in,
+            "points_binned": self.points_binned,
+            "voxels": self.voxels,
+            "timing_us": {
+                "bin": r1(t.bin), "voxels": r1(t.voxels), "crossing": r1(t.crossing),
+                "feature": r1(t.feature), "total": r1(t.total),
+            },
+        })
+    }
+}
