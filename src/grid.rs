@@ -143,6 +143,125 @@ impl Cell {
 /// point must not raise a rock).
 pub const TOP_MIN_POINTS: u32 = 2;
 
+/// Add a run of points to voxel `i` (`u32::MAX`: nothing). Returns the points added.
+#[inline]
+fn flush(acc: &mut [Acc], touched: &mut Vec<u32>, i: u32, run: &Acc) -> u32 {
+    if i == u32::MAX || run.n == 0 {
+        return 0;
+    }
+    match acc.get_mut(i as usize) {
+        Some(a) => {
+            if a.n == 0 {
+                // Capacity is the voxel count (or the pixel count): never reallocates.
+                touched.push(i);
+            }
+            a.n += run.n;
+            a.sx += run.sx;
+            a.sy += run.sy;
+            a.sz += run.sz;
+            run.n
+        }
+        None => 0,
+    }
+}
+
+/// What [`index_row`] needs about the row and the grid, in voxel units.
+#[derive(Clone, Copy)]
+struct RowParams {
+    /// The row's ray part, voxel units per metre of depth.
+    r: [f32; 3],
+    t: [f32; 3],
+    n: [f32; 3],
+    strides: [i32; 2],
+    min_mm: u16,
+    max_mm: u16,
+}
+
+/// The branch-free half of binning one row: every pixel's voxel index (`u32::MAX`
+/// when out of range or outside the grid) and position in voxel units. Returns the
+/// number of pixels in range. Written as plain indexed arithmetic so that it
+/// vectorises; compiled for several instruction sets and picked at run time (same
+/// results on each: Rust never fuses multiply-adds on its own).
+#[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
+fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffers) -> u32 {
+    let n = cols.x.len().min(pixels.len()).min(rb.idx.len());
+    let (cx_t, cy_t, cz_t, pixels) = (&cols.x[..n], &cols.y[..n], &cols.z[..n], &pixels[..n]);
+    let (idx, qx, qy, qz) = (
+        &mut rb.idx[..n],
+        &mut rb.qx[..n],
+        &mut rb.qy[..n],
+        &mut rb.qz[..n],
+    );
+    let mut valid = 0u32;
+    for k in 0..n {
+        let d = pixels[k];
+        let in_range = (d >= p.min_mm) & (d <= p.max_mm);
+        valid += u32::from(in_range);
+        let z = f32::from(d) * 0.001;
+        let x = p.t[0] + z * (cx_t[k] + p.r[0]);
+        let y = p.t[1] + z * (cy_t[k] + p.r[1]);
+        let h = p.t[2] + z * (cz_t[k] + p.r[2]);
+        let inside = in_range
+            & (x >= 0.0)
+            & (y >= 0.0)
+            & (h >= 0.0)
+            & (x < p.n[0])
+            & (y < p.n[1])
+            & (h < p.n[2]);
+        // Clamp into the grid so the conversion below is always in range (points
+        // outside are discarded by `inside` anyway); `f32::max`/`min` also map NaN
+        // to a bound.
+        let (cx, cy, ch) = (
+            x.max(0.0).min(p.n[0] - 1.0),
+            y.max(0.0).min(p.n[1] - 1.0),
+            h.max(0.0).min(p.n[2] - 1.0),
+        );
+        // Safety: cx, cy, ch are finite and within [0, n - 1] ⊂ i32's range, which is
+        // all `to_int_unchecked` requires; it truncates toward zero, i.e. floors these
+        // non-negative values. (The saturating `as` cast does not vectorise.)
+        let (ix, iy, iz) = unsafe {
+            (
+                cx.to_int_unchecked::<i32>(),
+                cy.to_int_unchecked::<i32>(),
+                ch.to_int_unchecked::<i32>(),
+            )
+        };
+        let i = ix * p.strides[0] + iy * p.strides[1] + iz;
+        idx[k] = if inside { i as u32 } else { u32::MAX };
+        qx[k] = x;
+        qy[k] = y;
+        qz[k] = h;
+    }
+    valid
+}
+
+/// The projector's per-column rays in voxel units, as three arrays (vectorises).
+#[derive(Debug, Clone, Default)]
+struct ColumnRays {
+    x: Vec<f32>,
+    y: Vec<f32>,
+    z: Vec<f32>,
+}
+
+/// One image row's per-pixel voxel indices and positions (voxel units).
+#[derive(Debug, Clone, Default)]
+struct RowBuffers {
+    idx: Vec<u32>,
+    qx: Vec<f32>,
+    qy: Vec<f32>,
+    qz: Vec<f32>,
+}
+
+impl RowBuffers {
+    fn resize(&mut self, width: usize) {
+        // Allocates only when the width grows (the first frame).
+        self.idx.resize(width, u32::MAX);
+        self.qx.resize(width, 0.0);
+        self.qy.resize(width, 0.0);
+        self.qz.resize(width, 0.0);
+    }
+}
+
 /// The voxel grid with its preallocated accumulators, outputs and ground cells.
 #[derive(Debug, Clone)]
 pub struct VoxelGrid {
@@ -152,6 +271,8 @@ pub struct VoxelGrid {
     voxels: Vec<Voxel>,
     cells: Vec<Cell>,
     touched_cells: Vec<u32>,
+    row: RowBuffers,
+    cols: ColumnRays,
 }
 
 impl VoxelGrid {
@@ -166,6 +287,8 @@ impl VoxelGrid {
             voxels: Vec::with_capacity(cap),
             cells: vec![Cell::EMPTY; spec.cell_count()],
             touched_cells: Vec::with_capacity(spec.cell_count()),
+            row: RowBuffers::default(),
+            cols: ColumnRays::default(),
         }
     }
 
@@ -187,6 +310,11 @@ impl VoxelGrid {
     /// Project, transform and bin one depth image (`projector`'s size) in one pass.
     /// Depths outside `[min_mm, max_mm]` are skipped (`min_mm ≥ 1`, so 0 = no return
     /// is always skipped).
+    ///
+    /// Each row is done in two steps: a branch-free pass that the compiler vectorises
+    /// computes every pixel's voxel index (or `u32::MAX`) and its position in voxel
+    /// units; a scalar pass then adds runs of neighbouring pixels that share a voxel
+    /// in registers and touches memory once per run.
     pub fn bin(
         &mut self,
         projector: &Projector,
@@ -208,37 +336,53 @@ impl VoxelGrid {
             (o[2] - s.origin[2]) * inv,
         ];
         let (nx, ny, nz) = (s.nx as f32, s.ny as f32, s.nz as f32);
-        let (sy_stride, sx_stride) = (s.nz, s.ny * s.nz);
+        let (sy_stride, sx_stride) = (s.nz as i32, (s.ny * s.nz) as i32);
         let width = projector.width();
+        self.row.resize(width);
+        if self.cols.x.len() != width {
+            // First frame (or a new projector size): allocate once.
+            let c = projector.col_table();
+            self.cols.x = c.iter().map(|c| c[0] * inv).collect();
+            self.cols.y = c.iter().map(|c| c[1] * inv).collect();
+            self.cols.z = c.iter().map(|c| c[2] * inv).collect();
+        }
         let mut stats = BinStats::default();
         let min_mm = min_mm.max(1);
         for (row, pixels) in projector.row_table().iter().zip(depth.chunks_exact(width)) {
             let r = [row[0] * inv, row[1] * inv, row[2] * inv];
-            for (col, &d) in projector.col_table().iter().zip(pixels) {
-                if d < min_mm || d > max_mm {
+            let rb = &mut self.row;
+            let valid = index_row(
+                &self.cols,
+                pixels,
+                RowParams {
+                    r,
+                    t,
+                    n: [nx, ny, nz],
+                    strides: [sx_stride, sy_stride],
+                    min_mm,
+                    max_mm,
+                },
+                rb,
+            );
+            stats.points_in += valid;
+            // Merge runs of pixels in the same voxel.
+            let mut cur = u32::MAX;
+            let mut run = Acc::default();
+            for (((&i, &x), &y), &h) in rb.idx.iter().zip(&rb.qx).zip(&rb.qy).zip(&rb.qz) {
+                if i == u32::MAX {
                     continue;
                 }
-                stats.points_in += 1;
-                let z = f32::from(d) * 0.001;
-                let qx = t[0] + z * (col[0] * inv + r[0]);
-                let qy = t[1] + z * (col[1] * inv + r[1]);
-                let qz = t[2] + z * (col[2] * inv + r[2]);
-                if !(qx >= 0.0 && qy >= 0.0 && qz >= 0.0 && qx < nx && qy < ny && qz < nz) {
-                    continue;
+                if i != cur {
+                    stats.points_binned += flush(&mut self.acc, &mut self.touched, cur, &run);
+                    cur = i;
+                    run = Acc::default();
                 }
-                let idx = qx as usize * sx_stride + qy as usize * sy_stride + qz as usize;
-                // In bounds by the checks above; `get_mut` keeps it panic-free anyway.
-                if let Some(a) = self.acc.get_mut(idx) {
-                    if a.n == 0 {
-                        self.touched.push(idx as u32);
-                    }
-                    a.n += 1;
-                    a.sx += qx;
-                    a.sy += qy;
-                    a.sz += qz;
-                    stats.points_binned += 1;
-                }
+                run.n += 1;
+                run.sx += x;
+                run.sy += y;
+                run.sz += h;
             }
+            stats.points_binned += flush(&mut self.acc, &mut self.touched, cur, &run);
         }
         stats
     }

@@ -47,6 +47,7 @@ pub struct Analyzer {
     expected: Vec<bool>,
     expected_count: usize,
     camera: [f32; 3],
+    paths: visibility::ShadowPaths,
     // Scratch, reused every frame.
     seen: Vec<bool>,
     shadowed: Vec<bool>,
@@ -101,6 +102,7 @@ impl Analyzer {
             .collect();
         let expected = visibility::expected_cells(&spec, projector, config);
         let expected_count = expected.iter().filter(|&&e| e).count();
+        let paths = visibility::ShadowPaths::new(&spec, projector.origin(), &expected);
         if expected_count == 0 {
             return Err(Error::Setup(
                 "the camera, as mounted, sees none of the corridor on flat ground; check [mount] and [camera]".into(),
@@ -113,6 +115,7 @@ impl Analyzer {
             expected,
             expected_count,
             camera: projector.origin(),
+            paths,
             seen: vec![false; spec.cell_count()],
             shadowed: vec![false; spec.cell_count()],
             strip: Vec::with_capacity(spec.nx),
@@ -156,23 +159,11 @@ impl Analyzer {
         verdict.seen_fraction = seen_expected as f32 / self.expected_count as f32;
         // Unseen cells hidden behind something seen: the camera could not see them.
         let mut shadowed_count = 0usize;
-        {
-            let probe = Frame {
-                spec: &self.spec,
-                cells: grid.cells(),
-                seen: &self.seen,
-                shadowed: &[],
-                expected: &self.expected,
-                region: &self.region,
-                cfg: &self.cfg,
-                camera: self.camera,
-            };
-            for (i, s) in self.shadowed.iter_mut().enumerate() {
-                let (ix, iy) = (i / self.spec.ny, i % self.spec.ny);
-                *s =
-                    self.expected[i] && !self.seen[i] && visibility::explained(&probe, ix, iy, 0.0);
-                shadowed_count += usize::from(*s);
-            }
+        for (i, s) in self.shadowed.iter_mut().enumerate() {
+            *s = self.expected[i]
+                && !self.seen[i]
+                && self.paths.shadowed(i, &self.seen, grid.cells());
+            shadowed_count += usize::from(*s);
         }
         let visible = self.expected_count - shadowed_count;
         let seen_of_visible = if visible == 0 {

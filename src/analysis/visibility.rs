@@ -69,3 +69,60 @@ pub fn explained(f: &Frame, ix: usize, iy: usize, target_z: f32) -> bool {
     }
     false
 }
+
+/// The fixed lines of sight from the camera to every expected cell's centre on the
+/// ground (z = 0): for each, the cells the line crosses with the line's lowest height
+/// in each. Built once; tells per frame which unseen cells are in a shadow without
+/// casting rays.
+#[derive(Debug, Clone)]
+pub struct ShadowPaths {
+    start: Vec<u32>,
+    entries: Vec<(u32, f32)>,
+}
+
+impl ShadowPaths {
+    /// Trace the lines of sight of the expected cells.
+    pub fn new(spec: &GridSpec, camera: [f32; 3], expected: &[bool]) -> Self {
+        let mut start = Vec::with_capacity(spec.cell_count() + 1);
+        let mut entries: Vec<(u32, f32)> = Vec::new();
+        for ix in 0..spec.nx {
+            for iy in 0..spec.ny {
+                let target = spec.cell(ix, iy);
+                start.push(entries.len() as u32);
+                if !expected[target] {
+                    continue;
+                }
+                let (gx, gy) = (spec.x_centre(ix), spec.y_centre(iy));
+                let (dx, dy, dz) = (gx - camera[0], gy - camera[1], -camera[2]);
+                let steps = ((dx.hypot(dy) / (0.25 * spec.voxel_m)).ceil() as usize).max(1);
+                let first = entries.len();
+                for k in 1..steps {
+                    let t = k as f32 / steps as f32;
+                    let (x, y, z) = (camera[0] + t * dx, camera[1] + t * dy, camera[2] + t * dz);
+                    let Some((jx, jy)) = spec.cell_at(x, y) else {
+                        continue;
+                    };
+                    let j = spec.cell(jx, jy) as u32;
+                    if j as usize == target {
+                        continue;
+                    }
+                    match entries[first..].last_mut() {
+                        Some(last) if last.0 == j => last.1 = last.1.min(z),
+                        _ => entries.push((j, z)),
+                    }
+                }
+            }
+        }
+        start.push(entries.len() as u32);
+        ShadowPaths { start, entries }
+    }
+
+    /// Whether the line of sight to `cell`'s ground passes below the top of a seen cell
+    /// (within 1 cm).
+    pub fn shadowed(&self, cell: usize, seen: &[bool], cells: &[crate::grid::Cell]) -> bool {
+        let (a, b) = (self.start[cell] as usize, self.start[cell + 1] as usize);
+        self.entries[a..b]
+            .iter()
+            .any(|&(j, z)| seen[j as usize] && cells[j as usize].top >= z - 0.01)
+    }
+}

@@ -1,0 +1,108 @@
+//! After warm-up, processing a frame allocates nothing on the heap: a counting global
+//! allocator watches 100 frames of varied terrain.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+use rover_terrain::sim::{self, Element, Extent, KinectNoise, Terrain};
+use rover_terrain::{Config, Pipeline};
+
+struct Counting;
+
+static COUNTING: AtomicBool = AtomicBool::new(false);
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+// Safety: defers every operation to the system allocator; only counts calls.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // Safety: same contract as ours.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // Safety: same contract as ours.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // Safety: same contract as ours.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn processing_allocates_nothing_after_warm_up() {
+    let config = Config::default();
+    let ramp = |toe_x_m, gradient_deg, alpha_deg, extent| Element::Ramp {
+        toe_x_m,
+        ref_y_m: 0.0,
+        gradient_deg,
+        alpha_deg,
+        extent,
+        cap_m: None,
+    };
+    let scenes = [
+        Terrain::flat(),
+        Terrain::new(vec![ramp(0.9, 20.0, 0.0, Extent::Full)]),
+        Terrain::new(vec![ramp(1.0, 18.0, -20.0, Extent::Left)]),
+        Terrain::new(vec![ramp(1.2, -12.0, 0.0, Extent::Right)]),
+        Terrain::new(vec![ramp(1.1, 36.0, 0.0, Extent::Full)]),
+        Terrain::new(vec![Element::Step {
+            x_m: 1.4,
+            height_m: 0.15,
+            extent: Extent::Full,
+        }]),
+        Terrain::new(vec![Element::Rock {
+            x_m: 1.3,
+            y_m: 0.0,
+            radius_m: 0.2,
+            height_m: 0.4,
+        }]),
+        Terrain::new(vec![Element::DropOff {
+            x_m: 1.5,
+            depth_m: 1.0,
+        }]),
+    ];
+    let mut frames: Vec<_> = scenes.iter().map(|t| sim::render(t, &config)).collect();
+    let mut noisy = frames[1].clone();
+    KinectNoise::default().apply(&mut noisy, config.camera.hfov_deg);
+    frames.push(noisy);
+    let (w, h) = (frames[0].width(), frames[0].height());
+    frames.push(rover_terrain_drivers::DepthFrame::from_pixels(
+        w,
+        h,
+        vec![0; w * h],
+    ));
+
+    let mut pipeline = Pipeline::new(config).unwrap();
+    // Warm-up: one pass over every kind of frame.
+    let mut decisions = Vec::new();
+    for f in &frames {
+        decisions.push(pipeline.process(f).unwrap().decision);
+    }
+    // The frames really differ: not every verdict is the same.
+    decisions.dedup();
+    assert!(decisions.len() >= 3, "{decisions:?}");
+
+    ALLOCATIONS.store(0, Ordering::SeqCst);
+    COUNTING.store(true, Ordering::SeqCst);
+    let mut go = 0;
+    for i in 0..100 {
+        let v = pipeline.process(&frames[i % frames.len()]).unwrap();
+        go += usize::from(v.traversable());
+    }
+    COUNTING.store(false, Ordering::SeqCst);
+    assert_eq!(
+        ALLOCATIONS.load(Ordering::SeqCst),
+        0,
+        "heap allocations while processing"
+    );
+    assert!(go > 0 && go < 100);
+}
