@@ -9,7 +9,7 @@ use serde::Deserialize;
 use crate::Error;
 
 /// The whole configuration.
-#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Config {
     /// The depth camera's image and optics.
@@ -165,16 +165,6 @@ impl Default for AnalysisConfig {
     }
 }
 
-impl Default for Config {
-    fn default() -> Self {
-        Config {
-            camera: CameraConfig::default(),
-            mount: MountConfig::default(),
-            rover: RoverConfig::default(),
-            analysis: AnalysisConfig::default(),
-        }
-    }
-}
 
 /// Largest voxel grid accepted, in voxels (keeps a bad config from eating memory).
 pub const MAX_VOXELS: usize = 16 * 1024 * 1024;

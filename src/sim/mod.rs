@@ -89,7 +89,7 @@ fn cast(terrain: &Terrain, projector: &Projector, u: usize, v: usize) -> u16 {
 
 fn to_mm(t: f64) -> u16 {
     let mm = (t * 1000.0).round();
-    if mm >= 1.0 && mm <= f64::from(u16::MAX) {
+    if (1.0..=f64::from(u16::MAX)).contains(&mm) {
         mm as u16
     } else {
         0

@@ -64,7 +64,7 @@ impl KinectNoise {
             let disparity = (fb / noisy * self.subpixel).round() / self.subpixel;
             let q = if disparity > 0.0 { fb / disparity } else { 0.0 };
             let mm = (q * 1000.0).round();
-            *p = if mm >= 1.0 && mm <= 65535.0 {
+            *p = if (1.0..=65535.0).contains(&mm) {
                 mm as u16
             } else {
                 0
