@@ -21,7 +21,16 @@ fn frames() -> Vec<(&'static str, rover_terrain_drivers::DepthFrame)> {
         ("flat", sim::render(&Terrain::flat(), &config)),
         ("diagonal_ramp", sim::render(&ramp, &config)),
         ("diagonal_ramp_noisy", noisy),
-        ("drop_off", sim::render(&Terrain::new(vec![Element::DropOff { x_m: 1.5, depth_m: 1.0 }]), &config)),
+        (
+            "drop_off",
+            sim::render(
+                &Terrain::new(vec![Element::DropOff {
+                    x_m: 1.5,
+                    depth_m: 1.0,
+                }]),
+                &config,
+            ),
+        ),
     ]
 }
 
@@ -29,7 +38,9 @@ fn pipeline(c: &mut Criterion) {
     let mut group = c.benchmark_group("pipeline_640x480");
     let mut p = Pipeline::new(Config::default()).expect("default config works");
     for (name, frame) in frames() {
-        group.bench_function(name, |b| b.iter(|| p.process(&frame).expect("frame fits").decision));
+        group.bench_function(name, |b| {
+            b.iter(|| p.process(&frame).expect("frame fits").decision)
+        });
     }
     group.finish();
 }

@@ -165,7 +165,6 @@ impl Default for AnalysisConfig {
     }
 }
 
-
 /// Largest voxel grid accepted, in voxels (keeps a bad config from eating memory).
 pub const MAX_VOXELS: usize = 16 * 1024 * 1024;
 

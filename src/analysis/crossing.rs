@@ -2,7 +2,6 @@
 //! in the wheel tracks, anything too tall under the belly, and ground that should be
 //! seen but is not (gaps, drop-offs).
 
-use super::visibility::explained;
 use super::{Frame, Region};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
@@ -133,41 +132,36 @@ fn median(values: &mut [f32]) -> f32 {
 /// Gaps: runs of cells the camera should see on flat ground, does not, and that are
 /// not in the shadow of something seen in front of them.
 ///
-/// A gap with no ground seen before it in its strip is unknown ground. A gap after
-/// seen ground with nothing seen beyond it, or with ground beyond it lower than a
-/// wheel radius below the ground before it, is a drop-off. A gap with ground beyond it at a
-/// climbable level is the shadow of a low step down when that ground explains it (the
-/// line of sight to the gap at the far ground's height passes below the near edge);
-/// otherwise it is unknown ground.
+/// - A gap with no ground seen before it in its strip is unknown ground.
+/// - A gap where the surface before it, continued at its slope, would be seen at
+///   grazing incidence (under [`GRAZING_DEG`]) is explained: a passable downslope
+///   seen from afar gives few points per cell, not none because of a hole.
+/// - A gap after seen ground with nothing seen beyond it, or with ground beyond it
+///   more than a wheel radius below both the ground before it and that ground's
+///   slope continued, is a drop-off.
+/// - A gap with ground beyond it at a climbable level is the shadow of a low step
+///   down when that ground explains it (the line of sight to the gap at the far
+///   ground's height passes below the near edge); otherwise it is unknown ground.
 pub fn gaps(f: &Frame, verdict: &mut Verdict) {
     let s = f.spec;
     let r = f.cfg.rover.wheel_radius_m as f32;
+    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
     let min_run = f.cfg.analysis.gap_min_cells as usize;
     for iy in 0..s.ny {
         let side = f.region[iy].side();
-        let mut before: Option<f32> = None;
+        // The last seen cells (x, z): the ground before a gap and its slope.
+        let mut before = Recent::default();
         let mut run: Option<(usize, usize)> = None; // (first ix, length)
         for ix in 0..=s.nx {
             let c = (ix < s.nx).then(|| s.cell(ix, iy));
             let seen_here = c.is_some_and(|c| f.seen[c]);
-            let end = ix == s.nx;
-            if seen_here || end {
+            if seen_here || ix == s.nx {
                 if let Some((start, len)) = run.take() {
                     if len >= min_run {
-                        let after = c.filter(|_| seen_here).map(|c| f.cells[c].z);
-                        let kind = match (before, after) {
-                            (None, _) => Some(HazardKind::Unknown),
-                            (Some(_), None) => Some(HazardKind::DropOff),
-                            (Some(floor), Some(z)) if z < floor - r => Some(HazardKind::DropOff),
-                            (Some(_), Some(z)) => {
-                                let all_shadowed = (start..ix)
-                                    .filter(|&j| {
-                                        f.expected[s.cell(j, iy)] && !f.seen[s.cell(j, iy)]
-                                    })
-                                    .all(|j| explained(f, j, iy, z));
-                                (!all_shadowed).then_some(HazardKind::Unknown)
-                            }
-                        };
+                        let after = c
+                            .filter(|_| seen_here)
+                            .map(|c| (f.cells[c].x, f.cells[c].z));
+                        let kind = judge_gap(f, iy, start, ix, before, after, r, tan_max);
                         if let Some(kind) = kind {
                             verdict.add_hazard(Hazard {
                                 kind,
@@ -178,7 +172,7 @@ pub fn gaps(f: &Frame, verdict: &mut Verdict) {
                     }
                 }
                 if let Some(c) = c.filter(|_| seen_here) {
-                    before = Some(f.cells[c].z);
+                    before.push(f.cells[c].x, f.cells[c].z);
                 }
                 continue;
             }
@@ -194,6 +188,109 @@ pub fn gaps(f: &Frame, verdict: &mut Verdict) {
                 Some((start, len)) => (start, len + 1),
                 None => (ix, 1),
             });
+        }
+    }
+}
+
+/// The last few seen cells of a strip, oldest first (a fixed ring: no allocation).
+#[derive(Debug, Default, Clone, Copy)]
+struct Recent {
+    cells: [(f32, f32); Recent::N],
+    len: usize,
+}
+
+impl Recent {
+    const N: usize = 6;
+    /// Cells farther back than this from the last one do not count for the slope.
+    const SPAN_M: f32 = 0.4;
+
+    fn push(&mut self, x: f32, z: f32) {
+        if self.len == Self::N {
+            self.cells.copy_within(1.., 0);
+            self.len -= 1;
+        }
+        self.cells[self.len] = (x, z);
+        self.len += 1;
+    }
+
+    fn last(&self) -> Option<(f32, f32)> {
+        self.len.checked_sub(1).map(|i| self.cells[i])
+    }
+
+    /// Least-squares slope dz/dx of the recent cells within [`Self::SPAN_M`] of the
+    /// last one; 0 with fewer than two.
+    fn slope(&self) -> f32 {
+        let Some((xl, _)) = self.last() else {
+            return 0.0;
+        };
+        let pts = self.cells[..self.len]
+            .iter()
+            .filter(|(x, _)| xl - x <= Self::SPAN_M);
+        let (mut n, mut sx, mut sz, mut sxx, mut sxz) = (0.0f32, 0.0, 0.0, 0.0, 0.0);
+        for &(x, z) in pts {
+            let x = x - xl;
+            n += 1.0;
+            sx += x;
+            sz += z;
+            sxx += x * x;
+            sxz += x * z;
+        }
+        let den = n * sxx - sx * sx;
+        if n < 2.0 || den <= 1e-9 {
+            0.0
+        } else {
+            (n * sxz - sx * sz) / den
+        }
+    }
+}
+
+/// Below this angle between the line of sight and the surface, a camera gets too
+/// few points to see a cell, degrees.
+pub const GRAZING_DEG: f32 = 6.0;
+
+/// What the unseen run of cells `start..end` in strip `iy` is, given the two seen
+/// cells before it and the first seen cell after it (x, z).
+#[allow(clippy::too_many_arguments)]
+fn judge_gap(
+    f: &Frame,
+    iy: usize,
+    start: usize,
+    end: usize,
+    before: Recent,
+    after: Option<(f32, f32)>,
+    r: f32,
+    tan_max: f32,
+) -> Option<HazardKind> {
+    let s = f.spec;
+    let Some((xb, zb)) = before.last() else {
+        return Some(HazardKind::Unknown);
+    };
+    // The slope of the ground before the gap, only up to passable: a steeper face is
+    // judged by the step and slope test.
+    let k = before.slope().clamp(-tan_max, tan_max);
+    let predicted = |x: f32| zb + k * (x - xb);
+    let unseen = (start..end).filter(|&j| f.expected[s.cell(j, iy)] && !f.seen[s.cell(j, iy)]);
+    let c = f.camera;
+    let grazing = unseen.clone().all(|j| {
+        let (x, y) = (s.x_centre(j), s.y_centre(iy));
+        let z = predicted(x);
+        let (dx, dy) = (x - c[0], y - c[1]);
+        let d = dx.hypot(dy);
+        let depression = (c[2] - z).atan2(d);
+        let descent = (-k * dx / d).atan();
+        depression - descent < GRAZING_DEG.to_radians()
+    });
+    if grazing && k < 0.0 {
+        return None;
+    }
+    match after {
+        None => Some(HazardKind::DropOff),
+        Some((xa, za)) if za < zb - r && za < predicted(xa) - r => Some(HazardKind::DropOff),
+        Some((_, za)) => {
+            let all_shadowed = unseen
+                .clone()
+                .all(|j| super::visibility::explained(f, j, iy, za));
+            (!all_shadowed).then_some(HazardKind::Unknown)
         }
     }
 }

@@ -42,7 +42,7 @@ pub struct Onset {
 /// A face flatter than this is a plateau behind a step, not a slope, degrees.
 const MIN_FACE_DEG: f64 = 2.0;
 /// Window of the first fit past the onset, metres.
-const FIRST_WINDOW_M: f32 = 0.5;
+const FIRST_WINDOW_M: f32 = 0.25;
 /// Least residual tolerance of the face fit, metres.
 const MIN_TOLERANCE_M: f64 = 0.006;
 

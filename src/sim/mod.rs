@@ -48,7 +48,9 @@ pub fn render(terrain: &Terrain, config: &Config) -> DepthFrame {
 fn cast(terrain: &Terrain, projector: &Projector, u: usize, v: usize) -> u16 {
     let d = projector.ray(u, v);
     let o = projector.point(u, v, 0.0);
+    // A margin, so that a surface lying exactly at a bound is inside the interval.
     let (lo, hi) = terrain.bounds();
+    let (lo, hi) = (lo - 0.01, hi + 0.01);
     let above = |t: f64| o.z + t * d.z - terrain.height(o.x + t * d.x, o.y + t * d.y);
     let (mut t0, t1) = if d.z < 0.0 {
         (((o.z - hi) / -d.z).max(0.0), ((o.z - lo) / -d.z).min(FAR_M))

@@ -79,7 +79,8 @@ mod tests {
 
     #[test]
     fn deterministic_and_about_the_right_size() {
-        let clean = DepthFrame::from_pixels(100, 100, vec![2000; 10_000]);
+        // Camera width matters: it sets the focal length and so the disparity step.
+        let clean = DepthFrame::from_pixels(640, 16, vec![2000; 10_240]);
         let noise = KinectNoise {
             seed: 3,
             ..Default::default()
@@ -94,12 +95,13 @@ mod tests {
             .filter(|&&p| p != 0)
             .map(|&p| f64::from(p))
             .collect();
-        let dropped = 10_000 - valid.len();
+        let dropped = 10_240 - valid.len();
         assert!((50..200).contains(&dropped), "{dropped}");
         let mean = valid.iter().sum::<f64>() / valid.len() as f64;
         let sd =
             (valid.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / valid.len() as f64).sqrt();
-        // σ = 1.425e-3 · 4 m = 5.7 mm, plus quantisation (step ≈ 11 mm at 2 m).
+        // σ = 1.425e-3 · 4 m² = 5.7 mm, plus quantisation (step ≈ 11 mm at 2 m with
+        // a 589 px focal length): about 6.6 mm in all, no bias.
         assert!((mean - 2000.0).abs() < 2.0, "{mean}");
         assert!(sd > 5.0 && sd < 9.0, "{sd}");
     }

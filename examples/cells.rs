@@ -1,0 +1,42 @@
+//! Debug aid: print the ground-cell grid of one rendered scene (JSON terrain element
+//! on the command line), seen cells as heights in cm, unseen expected cells as `?`.
+use rover_terrain::sim::{self, Element, Terrain};
+use rover_terrain::{Config, Pipeline};
+
+fn main() {
+    let el: Element =
+        serde_json::from_str(&std::env::args().nth(1).expect("a terrain element as JSON")).unwrap();
+    let config = Config::default();
+    let mut frame = sim::render(&Terrain::new(vec![el]), &config);
+    if let Some(seed) = std::env::args().nth(2).and_then(|s| s.parse().ok()) {
+        sim::KinectNoise {
+            seed,
+            ..Default::default()
+        }
+        .apply(&mut frame, config.camera.hfov_deg);
+    }
+    let mut p = Pipeline::new(config).unwrap();
+    let v = p.process(&frame).unwrap().clone();
+    println!("{}", v.to_json());
+    let spec = *p.grid().spec();
+    let exp = p.analyzer().expected();
+    for ix in (0..spec.nx).rev() {
+        let mut line = format!("{:5.2} ", spec.x_centre(ix));
+        for iy in (0..spec.ny).rev() {
+            let c = spec.cell(ix, iy);
+            let cell = p.grid().cells()[c];
+            line += &if cell.n >= 3 {
+                format!(
+                    "{:3.0}{}",
+                    cell.z * 100.0,
+                    if cell.n < 10 { "'" } else { " " }
+                )
+            } else if exp[c] {
+                "   ?".into()
+            } else {
+                "    ".into()
+            };
+        }
+        println!("{line}");
+    }
+}
