@@ -13,7 +13,7 @@ use crate::verdict::{Hazard, HazardKind, Verdict};
 /// happens within two cells (≤ 0.1 m at the default voxel), a *slope* otherwise. A
 /// change smaller than the wheel radius is climbable however steep (a low step); a
 /// long climb is impassable only if it is steep.
-pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<(f32, f32)>, verdict: &mut Verdict) {
+pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<(f32, f32, usize)>, verdict: &mut Verdict) {
     let r = f.cfg.rover.wheel_radius_m as f32;
     let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
     let vs = f.spec.voxel_m;
@@ -23,14 +23,17 @@ pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<(f32, f32)>, verdict: &mut Ve
             for ix in 0..f.spec.nx {
                 let c = f.spec.cell(ix, iy);
                 if f.seen[c] {
-                    strip.push((f.cells[c].x, f.cells[c].z));
+                    strip.push((f.cells[c].x, f.cells[c].z, ix));
                 }
             }
-            for (i, &(xi, zi)) in strip.iter().enumerate() {
-                for (j, &(xj, zj)) in strip.iter().enumerate().skip(i + 1) {
+            for (i, &(xi, zi, _)) in strip.iter().enumerate() {
+                for (j, &(xj, zj, _)) in strip.iter().enumerate().skip(i + 1) {
                     let (dx, dz) = (xj - xi, zj - zi);
                     if dz.abs() <= r {
                         continue;
+                    }
+                    if holey(&strip[i..=j]) {
+                        break; // unseen ground in between: the gap test judges it
                     }
                     if dx > 0.0 && dz.abs() >= tan_max * dx {
                         let kind = if dx <= 3.5 * vs {
@@ -54,16 +57,21 @@ pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<(f32, f32)>, verdict: &mut Ve
     }
 }
 
+/// Whether consecutive seen cells of a run are more than one cell apart somewhere
+/// (a hole: what lies there is unknown, so no slope or step is measured across it).
+fn holey(run: &[(f32, f32, usize)]) -> bool {
+    run.windows(2).any(|w| w[1].2 > w[0].2 + 1)
+}
+
 /// Whether every cell between the ends lies on the straight line between them
 /// (within [`SLOPE_STRAIGHTNESS_M`]): a slope, not flat ground and a jump.
-fn sustained(run: &[(f32, f32)]) -> bool {
-    let (&(x0, z0), &(x1, z1)) = (
-        run.first().expect("run has ends"),
-        run.last().expect("run has ends"),
-    );
+fn sustained(run: &[(f32, f32, usize)]) -> bool {
+    let (Some(&(x0, z0, _)), Some(&(x1, z1, _))) = (run.first(), run.last()) else {
+        return false;
+    };
     let k = (z1 - z0) / (x1 - x0);
     run.iter()
-        .all(|&(x, z)| (z - (z0 + k * (x - x0))).abs() <= SLOPE_STRAIGHTNESS_M)
+        .all(|&(x, z, _)| (z - (z0 + k * (x - x0))).abs() <= SLOPE_STRAIGHTNESS_M)
 }
 
 /// How far a cell may sit off the line for a run to count as one slope, metres.

@@ -51,7 +51,7 @@ pub struct Analyzer {
     // Scratch, reused every frame.
     seen: Vec<bool>,
     shadowed: Vec<bool>,
-    strip: Vec<(f32, f32)>,
+    strip: Vec<(f32, f32, usize)>,
     values: Vec<f32>,
     track_ref: Vec<[f32; 2]>,
     onset: Vec<Option<feature::Onset>>,

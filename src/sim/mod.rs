@@ -4,6 +4,7 @@
 
 mod catalogue;
 mod noise;
+pub mod random;
 mod terrain;
 
 pub use catalogue::{catalogue, Expectation, Scene, SceneConfig};

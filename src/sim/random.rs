@@ -1,0 +1,152 @@
+//! Random scenes with their expected verdicts, for sweeps beyond the fixed fixtures
+//! (`examples/sweep.rs`, `tests/sweep.rs`). Deterministic for an RNG seed.
+
+use rand::Rng;
+
+use super::catalogue::Expectation;
+use super::terrain::{Element, Extent, Terrain};
+use crate::verdict::{Decision, HazardKind};
+
+/// A passable feature scene of family `i % 8` (2, 3, 4, 5, 6, 7, 8, 9/10) with random
+/// toe distance (0.75-2 m), gradient (8-26° up, 8-20° down), toe angle (12-35°) and
+/// sometimes a plateau.
+pub fn workcase_scene<R: Rng>(rng: &mut R, i: usize) -> (Terrain, Expectation) {
+    let d: f64 = rng.gen_range(0.75..2.0);
+    let g: f64 = rng.gen_range(8.0..26.0);
+    let a: f64 = rng.gen_range(12.0..35.0) * if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+    let cap = if rng.gen_bool(0.3) {
+        Some(rng.gen_range(0.15..0.4))
+    } else {
+        None
+    };
+    let ramp = |toe_x_m, ref_y_m, gradient_deg, alpha_deg, extent| Element::Ramp {
+        toe_x_m,
+        ref_y_m,
+        gradient_deg,
+        alpha_deg,
+        extent,
+        cap_m: cap,
+    };
+    let down = -g.min(20.0);
+    let (el, wc, alpha, gradient) = match i % 8 {
+        0 => (ramp(d, 0.0, g, 0.0, Extent::Full), 2, None, g),
+        1 => (ramp(d, 0.45, g, 0.0, Extent::Left), 3, None, g),
+        2 => (ramp(d, 0.45, g, a, Extent::Left), 4, Some(a), g),
+        3 => (ramp(d, -0.45, g, 0.0, Extent::Right), 5, None, g),
+        4 => (ramp(d, -0.45, g, a, Extent::Right), 6, Some(a), g),
+        5 => (ramp(d, 0.0, g, a, Extent::Full), 7, Some(a), g),
+        6 => (ramp(d, 0.0, down, 0.0, Extent::Full), 8, None, down),
+        _ => {
+            if rng.gen_bool(0.5) {
+                (ramp(d, 0.45, down, 0.0, Extent::Left), 9, None, down)
+            } else {
+                (ramp(d, -0.45, down, 0.0, Extent::Right), 10, None, down)
+            }
+        }
+    };
+    let want = Expectation {
+        verdict: Decision::Go,
+        workcase: Some(wc),
+        distance_m: Some(d),
+        gradient_deg: Some(gradient),
+        alpha_deg: alpha,
+        hazard: None,
+    };
+    (Terrain::new(vec![el]), want)
+}
+
+/// A go/stop edge scene of family `i % 9`: high step, low step, steep slope, passable
+/// ramp, low rock under the belly, tall block under the belly, drop-off, low step
+/// down, high step down; random distance 0.9-2.4 m and size.
+pub fn hazard_scene<R: Rng>(rng: &mut R, i: usize) -> (Terrain, Expectation) {
+    let x: f64 = rng.gen_range(0.9..2.4);
+    let e = [Extent::Full, Extent::Left, Extent::Right][rng.gen_range(0..3)];
+    let ramp = |g: f64| Element::Ramp {
+        toe_x_m: x,
+        ref_y_m: 0.0,
+        gradient_deg: g,
+        alpha_deg: 0.0,
+        extent: e,
+        cap_m: None,
+    };
+    use Decision::{Go, Stop};
+    use HazardKind as K;
+    let (el, verdict, hazard) = match i % 9 {
+        0 => (
+            Element::Step {
+                x_m: x,
+                height_m: rng.gen_range(0.13..0.3),
+                extent: e,
+            },
+            Stop,
+            Some(K::Step),
+        ),
+        1 => (
+            Element::Step {
+                x_m: x,
+                height_m: rng.gen_range(0.03..0.09),
+                extent: e,
+            },
+            Go,
+            None,
+        ),
+        2 => (ramp(rng.gen_range(31.5..40.0)), Stop, Some(K::Slope)),
+        3 => (ramp(rng.gen_range(10.0..27.0)), Go, None),
+        4 => (
+            Element::Rock {
+                x_m: x,
+                y_m: rng.gen_range(-0.05..0.05),
+                radius_m: 0.15,
+                height_m: rng.gen_range(0.08..0.27),
+            },
+            Go,
+            None,
+        ),
+        5 => (
+            Element::Block {
+                x_m: x,
+                y_m: rng.gen_range(-0.05..0.05),
+                length_m: 0.25,
+                width_m: 0.25,
+                height_m: rng.gen_range(0.37..0.6),
+            },
+            Stop,
+            Some(K::Belly),
+        ),
+        6 => (
+            Element::DropOff {
+                x_m: x,
+                depth_m: rng.gen_range(0.3..1.5),
+            },
+            Stop,
+            Some(K::DropOff),
+        ),
+        7 => (
+            Element::Step {
+                x_m: x,
+                height_m: -rng.gen_range(0.02..0.07),
+                extent: Extent::Full,
+            },
+            Go,
+            None,
+        ),
+        _ => (
+            Element::Step {
+                x_m: x,
+                height_m: -rng.gen_range(0.16..0.5),
+                extent: Extent::Full,
+            },
+            Stop,
+            Some(K::DropOff),
+        ),
+    };
+    let want = Expectation {
+        verdict,
+        workcase: None,
+        distance_m: None,
+        gradient_deg: None,
+        alpha_deg: None,
+        hazard,
+    };
+    (Terrain::new(vec![el]), want)
+}
