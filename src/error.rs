@@ -37,6 +37,14 @@ pub enum Error {
         /// What is wrong with it.
         message: String,
     },
+    /// A link to the motor controller failed or is misconfigured.
+    #[error("link {target}: {message}")]
+    Link {
+        /// The link, as given (`serial:/dev/ttyUSB0`, ...).
+        target: String,
+        /// What went wrong.
+        message: String,
+    },
     /// Writing an output file failed.
     #[error("{path}: {source}")]
     Io {

@@ -1,13 +1,16 @@
 //! The rover-terrain command line.
 
+mod monitor;
+
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand};
+use rover_terrain::link::{self, wire, LinkTarget, Resilient};
 use rover_terrain::validate;
-use rover_terrain::{Config, Error, Pipeline};
+use rover_terrain::{Config, Error, Pipeline, Verdict};
 use rover_terrain_drivers::{DepthCamera, DepthFrame, FakeCamera, FrameStatus};
 
 /// Terrain analysis from a depth camera for a six-wheeled rocker rover.
@@ -29,8 +32,43 @@ enum Command {
         /// Config file (TOML); defaults for every key not set.
         #[arg(long)]
         config: Option<PathBuf>,
+        /// `full`: every field with timings; `wire`: what the link carries, exactly as
+        /// `monitor` prints it.
+        #[arg(long, value_enum, default_value_t = Format::Full)]
+        format: Format,
         /// Depth images, directories or fakenect sessions.
         input: Vec<PathBuf>,
+    },
+    /// Analyse depth frames and send each verdict over the link, then exit.
+    Send {
+        /// serial:PATH, slcan:PATH, can:IFACE (feature socketcan) or stdout.
+        #[arg(long)]
+        link: LinkTarget,
+        /// Serial speed for serial: and slcan: links.
+        #[arg(long, default_value_t = link::DEFAULT_BAUD)]
+        baud: u32,
+        /// Config file (TOML).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Depth images, directories or fakenect sessions.
+        #[arg(required = true)]
+        input: Vec<PathBuf>,
+    },
+    /// The controller's view on the bench: decode what arrives on a link, one JSON line
+    /// per message, with CRC errors, sequence gaps and staleness.
+    Monitor {
+        /// serial:PATH, slcan:PATH or can:IFACE (feature socketcan).
+        #[arg(long)]
+        link: LinkTarget,
+        /// Serial speed.
+        #[arg(long, default_value_t = link::DEFAULT_BAUD)]
+        baud: u32,
+        /// Exit after this many valid messages (verdicts and heartbeats).
+        #[arg(long)]
+        count: Option<u64>,
+        /// No valid verdict for this long and the controller would stop, ms.
+        #[arg(long, default_value_t = 200)]
+        deadline_ms: u64,
     },
     /// Time the whole pipeline on one frame and print one JSON line of medians and p99s.
     Bench {
@@ -58,6 +96,15 @@ enum Command {
         #[arg(long, default_value = "fixtures")]
         out: PathBuf,
     },
+}
+
+/// What `analyze` prints per frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum Format {
+    /// Every field, with timings.
+    Full,
+    /// The wire form, as `monitor` prints it.
+    Wire,
 }
 
 /// Exit code for an invalid configuration.
@@ -101,15 +148,75 @@ fn bundled(rel: &str) -> PathBuf {
 
 fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
-        Command::Analyze { config, input } => {
+        Command::Analyze {
+            config,
+            format,
+            input,
+        } => {
             let config = load_config(config.as_deref())?;
             let inputs = if input.is_empty() {
                 vec![bundled("fixtures/scenes")]
             } else {
                 input
             };
-            analyze(config, &inputs)
+            let stdout = std::io::stdout();
+            let mut out = stdout.lock();
+            let failed = for_each_verdict(config, &inputs, |v, source, _| {
+                let json = match format {
+                    Format::Full => {
+                        let mut json = v.to_json();
+                        if let Some(p) = source {
+                            json["source"] = serde_json::Value::from(p.display().to_string());
+                        }
+                        json
+                    }
+                    Format::Wire => wire::verdict_json(&wire::to_wire(v, 0.0)),
+                };
+                writeln!(out, "{json}").context("writing to stdout")
+            })?;
+            out.flush().context("writing to stdout")?;
+            Ok(if failed {
+                ExitCode::from(EXIT_FAILURE)
+            } else {
+                ExitCode::SUCCESS
+            })
         }
+        Command::Send {
+            link,
+            baud,
+            config,
+            input,
+        } => {
+            let config = load_config(config.as_deref())?;
+            // Fail at once, clearly, if the link cannot be opened at all.
+            drop(link::open(&link, baud)?);
+            let mut resilient = Resilient::new(link.clone(), baud);
+            let failed = for_each_verdict(config, &input, |v, _, captured| {
+                let age_ms = captured.elapsed().as_secs_f64() * 1e3;
+                resilient.send_verdict(&wire::to_wire(v, age_ms));
+                Ok(())
+            })?;
+            resilient.flush();
+            if resilient.dropped() > 0 {
+                anyhow::bail!(
+                    "link {link}: {} verdicts not sent ({} failures, {} reopened)",
+                    resilient.dropped(),
+                    resilient.failures(),
+                    resilient.reopened()
+                );
+            }
+            Ok(if failed {
+                ExitCode::from(EXIT_FAILURE)
+            } else {
+                ExitCode::SUCCESS
+            })
+        }
+        Command::Monitor {
+            link,
+            baud,
+            count,
+            deadline_ms,
+        } => monitor::run(&link, baud, count, deadline_ms),
         Command::Bench {
             config,
             iterations,
@@ -160,14 +267,17 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     }
 }
 
-/// Analyse every frame of every input; a bad input or frame is reported on stderr,
-/// the rest still analysed, and the exit code says something failed.
-fn analyze(config: Config, inputs: &[PathBuf]) -> anyhow::Result<ExitCode> {
+/// Analyse every frame of every input and hand each verdict (with its source file and
+/// the moment its frame was read) to `on_verdict`. A bad input or frame is reported on
+/// stderr and the rest still analysed; returns whether anything failed.
+fn for_each_verdict(
+    config: Config,
+    inputs: &[PathBuf],
+    mut on_verdict: impl FnMut(&Verdict, Option<&Path>, std::time::Instant) -> anyhow::Result<()>,
+) -> anyhow::Result<bool> {
     let (w, h) = (config.camera.width as usize, config.camera.height as usize);
     let mut pipeline = Pipeline::new(config)?;
     let mut frame = DepthFrame::with_capacity(w, h);
-    let stdout = std::io::stdout();
-    let mut out = stdout.lock();
     let mut failed = false;
     let mut index: u64 = 0;
     for input in inputs {
@@ -180,6 +290,7 @@ fn analyze(config: Config, inputs: &[PathBuf]) -> anyhow::Result<ExitCode> {
             }
         };
         loop {
+            let captured = std::time::Instant::now();
             match camera.next_frame(&mut frame) {
                 Ok(FrameStatus::Frame) => {}
                 Ok(FrameStatus::EndOfStream) => break,
@@ -192,13 +303,7 @@ fn analyze(config: Config, inputs: &[PathBuf]) -> anyhow::Result<ExitCode> {
             frame.seq = index;
             index += 1;
             match pipeline.process(&frame) {
-                Ok(v) => {
-                    let mut json = v.to_json();
-                    if let Some(p) = camera.last_path() {
-                        json["source"] = serde_json::Value::from(p.display().to_string());
-                    }
-                    writeln!(out, "{json}").context("writing to stdout")?;
-                }
+                Ok(v) => on_verdict(v, camera.last_path(), captured)?,
                 Err(e) => {
                     let name = camera
                         .last_path()
@@ -210,10 +315,5 @@ fn analyze(config: Config, inputs: &[PathBuf]) -> anyhow::Result<ExitCode> {
             }
         }
     }
-    out.flush().context("writing to stdout")?;
-    Ok(if failed {
-        ExitCode::from(EXIT_FAILURE)
-    } else {
-        ExitCode::SUCCESS
-    })
+    Ok(failed)
 }
