@@ -11,7 +11,7 @@ use clap::{Parser, Subcommand};
 use rover_terrain::link::{self, wire, LinkTarget, Resilient};
 use rover_terrain::validate;
 use rover_terrain::{Config, Error, Pipeline, Verdict};
-use rover_terrain_drivers::{DepthCamera, DepthFrame, FakeCamera, FrameStatus};
+use rover_terrain_drivers::{CameraSpec, DepthCamera, DepthFrame, FakeCamera, FrameStatus};
 
 /// Terrain analysis from a depth camera for a six-wheeled rocker rover.
 #[derive(Parser, Debug)]
@@ -36,6 +36,12 @@ enum Command {
         /// `monitor` prints it.
         #[arg(long, value_enum, default_value_t = Format::Full)]
         format: Format,
+        /// A camera instead of files: freenect[:INDEX], v4l:PATH or fake:PATH.
+        #[arg(long)]
+        camera: Option<CameraSpec>,
+        /// Stop after this many frames.
+        #[arg(long)]
+        frames: Option<u64>,
         /// Depth images, directories or fakenect sessions.
         input: Vec<PathBuf>,
     },
@@ -50,8 +56,14 @@ enum Command {
         /// Config file (TOML).
         #[arg(long)]
         config: Option<PathBuf>,
+        /// A camera instead of files: freenect[:INDEX], v4l:PATH or fake:PATH.
+        #[arg(long)]
+        camera: Option<CameraSpec>,
+        /// Stop after this many frames.
+        #[arg(long)]
+        frames: Option<u64>,
         /// Depth images, directories or fakenect sessions.
-        #[arg(required = true)]
+        #[arg(required_unless_present = "camera")]
         input: Vec<PathBuf>,
     },
     /// The controller's view on the bench: decode what arrives on a link, one JSON line
@@ -151,17 +163,15 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         Command::Analyze {
             config,
             format,
+            camera,
+            frames,
             input,
         } => {
             let config = load_config(config.as_deref())?;
-            let inputs = if input.is_empty() {
-                vec![bundled("fixtures/scenes")]
-            } else {
-                input
-            };
+            let inputs = sources(camera, input, Some(bundled("fixtures/scenes")))?;
             let stdout = std::io::stdout();
             let mut out = stdout.lock();
-            let failed = for_each_verdict(config, &inputs, |v, source, _| {
+            let failed = for_each_verdict(config, &inputs, frames, |v, source, _| {
                 let json = match format {
                     Format::Full => {
                         let mut json = v.to_json();
@@ -185,13 +195,16 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
             link,
             baud,
             config,
+            camera,
+            frames,
             input,
         } => {
+            let inputs = sources(camera, input, None)?;
             let config = load_config(config.as_deref())?;
             // Fail at once, clearly, if the link cannot be opened at all.
             drop(link::open(&link, baud)?);
             let mut resilient = Resilient::new(link.clone(), baud);
-            let failed = for_each_verdict(config, &input, |v, _, captured| {
+            let failed = for_each_verdict(config, &inputs, frames, |v, _, captured| {
                 let age_ms = captured.elapsed().as_secs_f64() * 1e3;
                 resilient.send_verdict(&wire::to_wire(v, age_ms));
                 Ok(())
@@ -267,12 +280,28 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     }
 }
 
-/// Analyse every frame of every input and hand each verdict (with its source file and
-/// the moment its frame was read) to `on_verdict`. A bad input or frame is reported on
-/// stderr and the rest still analysed; returns whether anything failed.
+/// The cameras to read: `--camera`, or the files given, or the default.
+fn sources(
+    camera: Option<CameraSpec>,
+    input: Vec<PathBuf>,
+    default: Option<PathBuf>,
+) -> anyhow::Result<Vec<CameraSpec>> {
+    match (camera, input.is_empty()) {
+        (Some(_), false) => anyhow::bail!("give either --camera or input files, not both"),
+        (Some(c), true) => Ok(vec![c]),
+        (None, false) => Ok(input.into_iter().map(CameraSpec::Fake).collect()),
+        (None, true) => Ok(default.into_iter().map(CameraSpec::Fake).collect()),
+    }
+}
+
+/// Analyse every frame of every source (up to `limit` frames) and hand each verdict
+/// (with its source file and the moment its frame was read) to `on_verdict`. A bad
+/// source or frame is reported on stderr and the rest still analysed; returns whether
+/// anything failed.
 fn for_each_verdict(
     config: Config,
-    inputs: &[PathBuf],
+    sources: &[CameraSpec],
+    limit: Option<u64>,
     mut on_verdict: impl FnMut(&Verdict, Option<&Path>, std::time::Instant) -> anyhow::Result<()>,
 ) -> anyhow::Result<bool> {
     let (w, h) = (config.camera.width as usize, config.camera.height as usize);
@@ -280,8 +309,8 @@ fn for_each_verdict(
     let mut frame = DepthFrame::with_capacity(w, h);
     let mut failed = false;
     let mut index: u64 = 0;
-    for input in inputs {
-        let mut camera = match FakeCamera::open(input) {
+    for spec in sources {
+        let mut camera = match rover_terrain_drivers::open(spec) {
             Ok(c) => c,
             Err(e) => {
                 eprintln!("rover-terrain: {e}");
@@ -289,26 +318,32 @@ fn for_each_verdict(
                 continue;
             }
         };
-        loop {
+        while limit.is_none_or(|n| index < n) {
             let captured = std::time::Instant::now();
             match camera.next_frame(&mut frame) {
                 Ok(FrameStatus::Frame) => {}
                 Ok(FrameStatus::EndOfStream) => break,
-                Err(e) => {
+                Err(e @ rover_terrain_drivers::DriverError::Malformed { .. }) => {
                     eprintln!("rover-terrain: {e}");
                     failed = true;
                     continue;
+                }
+                Err(e) => {
+                    // A camera that stopped (disconnected, timed out) ends this source.
+                    eprintln!("rover-terrain: {}: {e}", camera.describe());
+                    failed = true;
+                    break;
                 }
             }
             frame.seq = index;
             index += 1;
             match pipeline.process(&frame) {
-                Ok(v) => on_verdict(v, camera.last_path(), captured)?,
+                Ok(v) => on_verdict(v, camera.last_source(), captured)?,
                 Err(e) => {
                     let name = camera
-                        .last_path()
+                        .last_source()
                         .map(|p| p.display().to_string())
-                        .unwrap_or_default();
+                        .unwrap_or_else(|| camera.describe());
                     eprintln!("rover-terrain: {name}: {e}");
                     failed = true;
                 }

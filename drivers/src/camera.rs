@@ -29,4 +29,91 @@ pub trait DepthCamera {
     fn next_frame(&mut self, frame: &mut DepthFrame) -> Result<FrameStatus, DriverError>;
     /// A short human-readable name of the source (for logs and errors).
     fn describe(&self) -> String;
+    /// The file the last frame came from, for sources that read files.
+    fn last_source(&self) -> Option<&std::path::Path> {
+        None
+    }
+}
+
+/// Which camera to open: the `--camera` argument.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum CameraSpec {
+    /// `freenect[:INDEX]`: a Kinect v1 through libfreenect (feature `freenect`).
+    Freenect(u32),
+    /// `v4l:PATH`: a V4L2 depth camera.
+    V4l(std::path::PathBuf),
+    /// `fake:PATH`: a depth image, a directory of them, or a fakenect session.
+    Fake(std::path::PathBuf),
+}
+
+impl std::str::FromStr for CameraSpec {
+    type Err = DriverError;
+
+    fn from_str(s: &str) -> Result<Self, DriverError> {
+        let bad = |why: &str| DriverError::BadSpec {
+            spec: s.to_string(),
+            why: why.to_string(),
+        };
+        let (kind, rest) = match s.split_once(':') {
+            Some((k, r)) => (k, Some(r)),
+            None => (s, None),
+        };
+        match (kind, rest) {
+            ("freenect", None) => Ok(CameraSpec::Freenect(0)),
+            ("freenect", Some(i)) => i
+                .parse()
+                .map(CameraSpec::Freenect)
+                .map_err(|_| bad("the index must be a number")),
+            ("v4l", Some(p)) if !p.is_empty() => Ok(CameraSpec::V4l(p.into())),
+            ("fake", Some(p)) if !p.is_empty() => Ok(CameraSpec::Fake(p.into())),
+            ("v4l" | "fake", _) => Err(bad("needs a path after ':'")),
+            _ => Err(bad("expected freenect[:INDEX], v4l:PATH or fake:PATH")),
+        }
+    }
+}
+
+/// Open the camera `spec` names.
+pub fn open(spec: &CameraSpec) -> Result<Box<dyn DepthCamera>, DriverError> {
+    match spec {
+        CameraSpec::Fake(p) => Ok(Box::new(crate::FakeCamera::open(p)?)),
+        #[cfg(feature = "freenect")]
+        CameraSpec::Freenect(i) => Ok(Box::new(crate::freenect::FreenectCamera::open(*i)?)),
+        #[cfg(not(feature = "freenect"))]
+        CameraSpec::Freenect(_) => Err(DriverError::NoDevice(
+            "built without libfreenect support: rebuild with `--features freenect` (needs libfreenect-dev)".into(),
+        )),
+        CameraSpec::V4l(p) => Err(DriverError::NoDevice(format!(
+            "{}: the V4L2 backend is not built yet",
+            p.display()
+        ))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn camera_specs_parse() {
+        assert_eq!(
+            "freenect".parse::<CameraSpec>().unwrap(),
+            CameraSpec::Freenect(0)
+        );
+        assert_eq!(
+            "freenect:2".parse::<CameraSpec>().unwrap(),
+            CameraSpec::Freenect(2)
+        );
+        assert_eq!(
+            "fake:a/b".parse::<CameraSpec>().unwrap(),
+            CameraSpec::Fake("a/b".into())
+        );
+        assert_eq!(
+            "v4l:/dev/video2".parse::<CameraSpec>().unwrap(),
+            CameraSpec::V4l("/dev/video2".into())
+        );
+        for bad in ["freenect:x", "fake:", "v4l", "webcam:0", ""] {
+            let e = bad.parse::<CameraSpec>().unwrap_err().to_string();
+            assert!(e.contains(&format!("{bad:?}")), "{e}");
+        }
+    }
 }

@@ -33,6 +33,28 @@ pub enum DriverError {
         /// The index that lists it.
         index: PathBuf,
     },
+    /// No camera at all, or not the one asked for.
+    #[error("{0}")]
+    NoDevice(String),
+    /// The camera stopped delivering (unplugged, USB error, recording ended).
+    #[error("camera disconnected: {0}")]
+    Disconnected(String),
+    /// No frame within the camera's timeout.
+    #[error("no frame from {camera} within {timeout_ms} ms")]
+    Timeout {
+        /// The camera.
+        camera: String,
+        /// The timeout, ms.
+        timeout_ms: u64,
+    },
+    /// A camera argument that names no known camera.
+    #[error("camera {spec:?}: {why}")]
+    BadSpec {
+        /// The argument as given.
+        spec: String,
+        /// What is wrong.
+        why: String,
+    },
     /// The input path does not exist or is neither a file nor a directory.
     #[error("{path}: no such file or directory")]
     NotFound {

@@ -148,6 +148,10 @@ impl DepthCamera for FakeCamera {
     fn describe(&self) -> String {
         self.label.clone()
     }
+
+    fn last_source(&self) -> Option<&Path> {
+        self.last_path()
+    }
 }
 
 #[cfg(test)]

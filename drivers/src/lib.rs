@@ -12,9 +12,11 @@ mod error;
 mod fake;
 pub mod fakenect;
 mod frame;
+#[cfg(feature = "freenect")]
+pub mod freenect;
 pub mod image;
 
-pub use camera::{DepthCamera, FrameStatus};
+pub use camera::{open, CameraSpec, DepthCamera, FrameStatus};
 pub use error::DriverError;
 pub use fake::FakeCamera;
 pub use frame::{DepthFrame, MAX_HEIGHT, MAX_WIDTH};

@@ -1,0 +1,38 @@
+//! Write rendered scenes as a libfreenect fakenect session (INDEX.txt, d-*.pgm raw
+//! 11-bit little-endian, device.json), e.g. to replay through libfreenect's fakenect:
+//! `cargo run --example record_scene -- OUT_DIR`.
+use rover_terrain::sim::{self, Element, Extent, Terrain};
+use rover_terrain::Config;
+use rover_terrain_drivers::fakenect::{Registration, SessionWriter};
+
+fn main() {
+    let out = std::env::args().nth(1).expect("an output directory");
+    let config = Config::default();
+    let ramp = |g, a, e| Element::Ramp {
+        toe_x_m: 1.0,
+        ref_y_m: 0.0,
+        gradient_deg: g,
+        alpha_deg: a,
+        extent: e,
+        cap_m: None,
+    };
+    let scenes = [
+        Terrain::flat(),
+        Terrain::new(vec![ramp(15.0, 0.0, Extent::Full)]),
+        Terrain::new(vec![Element::Step {
+            x_m: 1.4,
+            height_m: 0.2,
+            extent: Extent::Full,
+        }]),
+    ];
+    let mut w = SessionWriter::create(
+        std::path::Path::new(&out),
+        Some(Registration::LIBFREENECT_DEFAULT),
+    )
+    .expect("new session");
+    for (i, t) in scenes.iter().enumerate() {
+        let f = sim::render(t, &config);
+        w.write_depth(&f, 1_700_000_000.0 + i as f64 / 30.0, 1000 + 33 * i as u32)
+            .expect("frame written");
+    }
+}
