@@ -102,6 +102,24 @@ enum Command {
         #[arg(long, default_value = "docs/validation.md")]
         out: PathBuf,
     },
+    /// Record depth frames as a libfreenect fakenect session (INDEX.txt, d-*.pgm, device.json)
+    /// that our fake camera and libfreenect's fakenect can replay.
+    Record {
+        /// freenect[:INDEX] or fake:PATH.
+        #[arg(long)]
+        camera: CameraSpec,
+        /// The session directory (must not hold an INDEX.txt yet).
+        #[arg(long)]
+        out: PathBuf,
+        /// Stop after this many frames.
+        #[arg(long, conflicts_with = "seconds")]
+        frames: Option<u64>,
+        /// Stop after this many seconds.
+        #[arg(long)]
+        seconds: Option<f64>,
+    },
+    /// List the depth cameras attached.
+    Cameras,
     /// Render the fixture suite's frames and expectation files from the scene catalogue.
     RenderFixtures {
         /// Where to write them.
@@ -272,12 +290,73 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
                 ExitCode::from(EXIT_FAILURE)
             })
         }
+        Command::Record {
+            camera,
+            out,
+            frames,
+            seconds,
+        } => record(&camera, &out, frames, seconds),
+        Command::Cameras => {
+            for line in rover_terrain_drivers::list_cameras() {
+                println!("{line}");
+            }
+            Ok(ExitCode::SUCCESS)
+        }
         Command::RenderFixtures { out } => {
             let written = validate::write_fixtures(&out)?;
             eprintln!("wrote {} fixtures under {}", written.len(), out.display());
             Ok(ExitCode::SUCCESS)
         }
     }
+}
+
+/// Record a camera into a fakenect session.
+fn record(
+    camera: &CameraSpec,
+    out: &Path,
+    frames: Option<u64>,
+    seconds: Option<f64>,
+) -> anyhow::Result<ExitCode> {
+    use rover_terrain_drivers::fakenect::{Registration, Session, SessionWriter};
+    anyhow::ensure!(
+        frames.is_some() || seconds.is_some(),
+        "give --frames N or --seconds S"
+    );
+    if let Some(s) = seconds {
+        anyhow::ensure!(s.is_finite() && s > 0.0, "--seconds must be positive");
+    }
+    // Keep a replayed session's registration; else libfreenect's default.
+    let registration = match camera {
+        CameraSpec::Fake(p) if Session::is_session(p) => Session::open(p)?.registration().copied(),
+        _ => None,
+    }
+    .unwrap_or(Registration::LIBFREENECT_DEFAULT);
+    let mut cam = rover_terrain_drivers::open(camera)?;
+    let mut writer = SessionWriter::create(out, Some(registration))?;
+    let mut frame = DepthFrame::default();
+    let start = std::time::Instant::now();
+    let wall0 = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0.0, |d| d.as_secs_f64());
+    let mut n = 0u64;
+    while frames.is_none_or(|f| n < f) && seconds.is_none_or(|s| start.elapsed().as_secs_f64() < s)
+    {
+        match cam.next_frame(&mut frame)? {
+            FrameStatus::Frame => {}
+            FrameStatus::EndOfStream => break,
+        }
+        // Arrival time: the frame's own clock for replayed sessions (so a re-recording
+        // keeps the original timing), else wall time now. The second number in the
+        // file name is the frame counter (libfreenect writes the Kinect's timestamp).
+        let t = match camera {
+            CameraSpec::Fake(_) => frame.timestamp_s,
+            _ => wall0 + start.elapsed().as_secs_f64(),
+        };
+        writer.write_depth(&frame, t, n as u32)?;
+        n += 1;
+    }
+    eprintln!("recorded {n} frames into {}", out.display());
+    Ok(ExitCode::SUCCESS)
 }
 
 /// The cameras to read: `--camera`, or the files given, or the default.

@@ -72,6 +72,44 @@ impl std::str::FromStr for CameraSpec {
     }
 }
 
+/// One line per depth camera attached, for `rover-terrain cameras`.
+pub fn list_cameras() -> Vec<String> {
+    let mut out = Vec::new();
+    #[cfg(feature = "freenect")]
+    match crate::freenect::count() {
+        Ok(0) => out.push("freenect: no Kinect found".into()),
+        Ok(n) => out
+            .extend((0..n).map(|i| {
+                format!("freenect:{i}  Kinect v1 (libfreenect), depth 640x480 11-bit/mm")
+            })),
+        Err(e) => out.push(format!("freenect: {e}")),
+    }
+    #[cfg(not(feature = "freenect"))]
+    out.push("freenect: not built (rebuild with --features freenect)".into());
+    let mut video: Vec<_> = std::fs::read_dir("/dev")
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("video"))
+        })
+        .collect();
+    video.sort();
+    if video.is_empty() {
+        out.push("v4l: no /dev/video* devices".into());
+    }
+    for p in video {
+        out.push(format!(
+            "v4l:{}  (the V4L2 backend is not built yet: formats not listed)",
+            p.display()
+        ));
+    }
+    out
+}
+
 /// Open the camera `spec` names.
 pub fn open(spec: &CameraSpec) -> Result<Box<dyn DepthCamera>, DriverError> {
     match spec {

@@ -7,6 +7,30 @@ use crate::{DepthCamera, DepthFrame, DriverError, FrameStatus};
 /// Frame period assumed for plain image sequences, seconds (a Kinect's 30 Hz).
 pub const IMAGE_SEQUENCE_PERIOD_S: f64 = 1.0 / 30.0;
 
+/// How fast the fake camera delivers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Pace {
+    /// Each frame as soon as it is asked for (tests, analysis, bench).
+    #[default]
+    AsFastAsPossible,
+    /// At the recorded timing: a session's arrival times, 30 Hz for images.
+    Recorded,
+}
+
+/// Faults the fake camera injects, by frame number (0-based, counting every call that
+/// would deliver a frame), for testing what sits behind the camera.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Faults {
+    /// From this frame on, `count` calls in a row time out (a stalled camera), then
+    /// frames flow again.
+    pub stall: Option<(u64, u64)>,
+    /// From this frame on, the camera is gone: every call is `Disconnected`.
+    pub disconnect_at: Option<u64>,
+    /// This frame arrives corrupt: the call returns a `Malformed` error and the
+    /// stream goes on.
+    pub corrupt_at: Option<u64>,
+}
+
 #[derive(Debug)]
 enum Source {
     Images(Vec<PathBuf>),
@@ -27,6 +51,11 @@ pub struct FakeCamera {
     looping: bool,
     scratch: Vec<u8>,
     last: Option<usize>,
+    pace: Pace,
+    faults: Faults,
+    calls: u64,
+    stalled: u64,
+    started: Option<(std::time::Instant, f64)>,
 }
 
 impl FakeCamera {
@@ -82,7 +111,53 @@ impl FakeCamera {
             looping: false,
             scratch: Vec::new(),
             last: None,
+            pace: Pace::AsFastAsPossible,
+            faults: Faults::default(),
+            calls: 0,
+            stalled: 0,
+            started: None,
         })
+    }
+
+    /// Deliver at this pace.
+    pub fn pace(mut self, pace: Pace) -> Self {
+        self.pace = pace;
+        self
+    }
+
+    /// Inject these faults.
+    pub fn faults(mut self, faults: Faults) -> Self {
+        self.faults = faults;
+        self
+    }
+
+    /// The recorded time of frame `i`, seconds.
+    fn recorded_time(&self, i: usize) -> f64 {
+        match &self.source {
+            Source::Images(_) => self.seq as f64 * IMAGE_SEQUENCE_PERIOD_S,
+            Source::Session(s) => s.depth_entries()[i].time_s,
+        }
+    }
+
+    /// Sleep until frame `i` is due at the recorded pace (a session's first frame, or
+    /// the first after a loop, is due at once).
+    fn wait_for(&mut self, i: usize) {
+        if self.pace != Pace::Recorded {
+            return;
+        }
+        let t = self.recorded_time(i);
+        let (t0, r0) = match self.started {
+            Some((t0, r0)) if t >= r0 => (t0, r0),
+            _ => {
+                self.started = Some((std::time::Instant::now(), t));
+                return;
+            }
+        };
+        let due = t0 + std::time::Duration::from_secs_f64(t - r0);
+        let now = std::time::Instant::now();
+        if due > now {
+            std::thread::sleep(due - now);
+        }
     }
 
     /// Start again from the first frame after the last one, instead of ending.
@@ -124,6 +199,29 @@ impl DepthCamera for FakeCamera {
     }
 
     fn next_frame(&mut self, frame: &mut DepthFrame) -> Result<FrameStatus, DriverError> {
+        let call = self.calls;
+        if self.faults.disconnect_at.is_some_and(|at| call >= at) {
+            return Err(DriverError::Disconnected(format!(
+                "{}: injected disconnect",
+                self.label
+            )));
+        }
+        if let Some((at, count)) = self.faults.stall {
+            if call >= at && self.stalled < count {
+                self.stalled += 1;
+                return Err(DriverError::Timeout {
+                    camera: self.label.clone(),
+                    timeout_ms: 0,
+                });
+            }
+        }
+        self.calls += 1;
+        if self.faults.corrupt_at == Some(call) {
+            return Err(DriverError::Malformed {
+                path: self.label.clone().into(),
+                what: format!("injected corrupt frame {call}"),
+            });
+        }
         if self.next >= self.len() {
             if !self.looping {
                 return Ok(FrameStatus::EndOfStream);
@@ -133,6 +231,7 @@ impl DepthCamera for FakeCamera {
         let i = self.next;
         self.next += 1;
         self.last = Some(i);
+        self.wait_for(i);
         match &self.source {
             Source::Images(v) => {
                 read_depth_image(&v[i], &mut self.scratch, frame)?;
@@ -190,6 +289,59 @@ mod tests {
             assert_eq!(cam.next_frame(&mut f).unwrap(), FrameStatus::Frame);
             assert_eq!(f.seq, seq);
         }
+    }
+
+    #[test]
+    fn injected_faults_come_when_asked_and_the_stream_goes_on() {
+        let dir = tempfile::tempdir().unwrap();
+        let f = DepthFrame::from_pixels(1, 1, vec![5]);
+        std::fs::write(dir.path().join("a.png"), encode_png_depth(&f)).unwrap();
+        let faults = Faults {
+            stall: Some((1, 2)),
+            corrupt_at: Some(2),
+            disconnect_at: Some(4),
+        };
+        let mut cam = FakeCamera::open(&dir.path().join("a.png"))
+            .unwrap()
+            .looping(true)
+            .faults(faults);
+        let mut f = DepthFrame::default();
+        let mut outcome = Vec::new();
+        for _ in 0..8 {
+            outcome.push(match cam.next_frame(&mut f) {
+                Ok(FrameStatus::Frame) => "frame",
+                Ok(FrameStatus::EndOfStream) => "end",
+                Err(DriverError::Timeout { .. }) => "timeout",
+                Err(DriverError::Malformed { .. }) => "corrupt",
+                Err(DriverError::Disconnected(_)) => "gone",
+                Err(_) => "other",
+            });
+        }
+        assert_eq!(
+            outcome,
+            ["frame", "timeout", "timeout", "frame", "corrupt", "frame", "gone", "gone"]
+        );
+    }
+
+    #[test]
+    fn recorded_pace_follows_the_session_times() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut w = SessionWriter::create(dir.path(), None).unwrap();
+        let frame = DepthFrame::from_pixels(2, 1, vec![1000, 1000]);
+        for k in 0..3 {
+            w.write_depth(&frame, 50.0 + 0.05 * f64::from(k), k)
+                .unwrap();
+        }
+        let mut cam = FakeCamera::open(dir.path()).unwrap().pace(Pace::Recorded);
+        let mut f = DepthFrame::default();
+        let t = std::time::Instant::now();
+        for _ in 0..3 {
+            cam.next_frame(&mut f).unwrap();
+        }
+        // Three frames 50 ms apart take at least 100 ms to replay at their pace (a
+        // lower bound on what the camera did, not a timing of our code).
+        assert!(t.elapsed() >= std::time::Duration::from_millis(100));
+        assert_eq!(f.timestamp_s, 50.1);
     }
 
     #[test]

@@ -89,6 +89,24 @@ unsafe extern "C" fn on_log(_ctx: *mut ffi::freenect_context, level: c_int, msg:
     }
 }
 
+/// How many Kinects libfreenect sees.
+pub fn count() -> Result<u32, DriverError> {
+    let mut ctx = std::ptr::null_mut();
+    // Safety: valid out-pointer, null USB context; the context is shut down below and
+    // not used after.
+    unsafe {
+        if ffi::freenect_init(&mut ctx, std::ptr::null_mut()) < 0 || ctx.is_null() {
+            return Err(DriverError::NoDevice(
+                "libfreenect could not start (no USB access?)".into(),
+            ));
+        }
+        ffi::freenect_set_log_callback(ctx, Some(on_log));
+        let n = ffi::freenect_num_devices(ctx).max(0) as u32;
+        ffi::freenect_shutdown(ctx);
+        Ok(n)
+    }
+}
+
 impl FreenectCamera {
     /// Open Kinect number `index`. Fails with [`DriverError::NoDevice`] when
     /// libfreenect cannot start or sees no such Kinect.

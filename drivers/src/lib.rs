@@ -16,7 +16,7 @@ mod frame;
 pub mod freenect;
 pub mod image;
 
-pub use camera::{open, CameraSpec, DepthCamera, FrameStatus};
+pub use camera::{list_cameras, open, CameraSpec, DepthCamera, FrameStatus};
 pub use error::DriverError;
-pub use fake::FakeCamera;
+pub use fake::{FakeCamera, Faults, Pace};
 pub use frame::{DepthFrame, MAX_HEIGHT, MAX_WIDTH};
