@@ -120,8 +120,11 @@ pub fn open(spec: &CameraSpec) -> Result<Box<dyn DepthCamera>, DriverError> {
         CameraSpec::Freenect(_) => Err(DriverError::NoDevice(
             "built without libfreenect support: rebuild with `--features freenect` (needs libfreenect-dev)".into(),
         )),
+        #[cfg(feature = "v4l")]
+        CameraSpec::V4l(p) => Ok(Box::new(crate::v4l::V4lCamera::open(p, 640, 480, 30, 1.0)?)),
+        #[cfg(not(feature = "v4l"))]
         CameraSpec::V4l(p) => Err(DriverError::NoDevice(format!(
-            "{}: the V4L2 backend is not built yet",
+            "v4l:{}: built without V4L2 support: rebuild with `--features v4l` (needs libclang-dev)",
             p.display()
         ))),
     }

@@ -15,6 +15,8 @@ mod frame;
 #[cfg(feature = "freenect")]
 pub mod freenect;
 pub mod image;
+#[cfg(feature = "v4l")]
+pub mod v4l;
 
 pub use camera::{list_cameras, open, CameraSpec, DepthCamera, FrameStatus};
 pub use error::DriverError;
