@@ -43,6 +43,9 @@ pub const NOISY: Tolerance = Tolerance {
     alpha_deg: 3.0,
 };
 
+/// The config of the fixtures that need the camera pitched 40° down.
+const PITCH40_CONFIG: &str = "# The default rover and Kinect, with the camera pitched 40° down so that\n# it sees ground from 0.43 m (the paper's left-side toe is at 0.474 m).\n[mount]\npitch_deg = 40.0\n";
+
 /// Suffix of fixture files.
 pub const FIXTURE_SUFFIX: &str = ".fixture.toml";
 
@@ -106,21 +109,17 @@ pub fn write_fixtures(root: &Path) -> Result<Vec<PathBuf>, Error> {
     for scene in catalogue() {
         let (sub, config_name, config) = match scene.config {
             SceneConfig::Default => ("scenes", None, Config::default()),
-            SceneConfig::Pitch40 => {
-                let text = "# The default rover and Kinect, with the camera pitched 40° down so that\n# it sees ground from 0.43 m (the paper's left-side toe is at 0.474 m).\n[mount]\npitch_deg = 40.0\n";
-                (
-                    "pitch40",
-                    Some("rover-terrain.toml"),
-                    Config::from_toml(text, "pitch40")?,
-                )
-            }
+            SceneConfig::Pitch40 => (
+                "pitch40",
+                Some("rover-terrain.toml"),
+                Config::from_toml(PITCH40_CONFIG, "pitch40")?,
+            ),
         };
         let dir = root.join(sub);
         std::fs::create_dir_all(&dir).map_err(io(&dir))?;
         if let Some(name) = config_name {
             let p = dir.join(name);
-            let text = "# The default rover and Kinect, with the camera pitched 40° down so that\n# it sees ground from 0.43 m (the paper's left-side toe is at 0.474 m).\n[mount]\npitch_deg = 40.0\n";
-            std::fs::write(&p, text).map_err(io(&p))?;
+            std::fs::write(&p, PITCH40_CONFIG).map_err(io(&p))?;
         }
         let frame = match &scene.terrain {
             Some(t) => sim::render(t, &config),

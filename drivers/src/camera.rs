@@ -72,6 +72,23 @@ impl std::str::FromStr for CameraSpec {
     }
 }
 
+/// The V4L2 device nodes, `/dev/video*`, sorted.
+pub(crate) fn video_nodes() -> Vec<std::path::PathBuf> {
+    let mut nodes: Vec<_> = std::fs::read_dir("/dev")
+        .into_iter()
+        .flatten()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.file_name()
+                .and_then(|n| n.to_str())
+                .is_some_and(|n| n.starts_with("video"))
+        })
+        .collect();
+    nodes.sort();
+    nodes
+}
+
 /// One line per depth camera attached, for `rover-terrain cameras`.
 pub fn list_cameras() -> Vec<String> {
     let mut out = Vec::new();
@@ -86,18 +103,7 @@ pub fn list_cameras() -> Vec<String> {
     }
     #[cfg(not(feature = "freenect"))]
     out.push("freenect: not built (rebuild with --features freenect)".into());
-    let mut video: Vec<_> = std::fs::read_dir("/dev")
-        .into_iter()
-        .flatten()
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| {
-            p.file_name()
-                .and_then(|n| n.to_str())
-                .is_some_and(|n| n.starts_with("video"))
-        })
-        .collect();
-    video.sort();
+    let video = video_nodes();
     if video.is_empty() {
         out.push("v4l: no /dev/video* devices".into());
     }

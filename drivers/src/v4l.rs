@@ -126,18 +126,7 @@ fn find(spec: &Path) -> Result<(PathBuf, Device), DriverError> {
         return Ok((spec.to_path_buf(), dev));
     }
     let want = spec_str.to_lowercase();
-    let mut nodes: Vec<PathBuf> = std::fs::read_dir("/dev")
-        .into_iter()
-        .flatten()
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| {
-            p.file_name()
-                .and_then(|n| n.to_str())
-                .is_some_and(|n| n.starts_with("video"))
-        })
-        .collect();
-    nodes.sort();
+    let nodes = crate::camera::video_nodes();
     for p in nodes {
         if let Ok(dev) = Device::with_path(&p) {
             if dev

@@ -18,6 +18,7 @@ pub mod can;
 mod freshness;
 mod message;
 pub mod serial;
+pub mod vectors;
 
 pub use freshness::{Command, Freshness};
 pub use message::{Decision, DecodeError, HazardKind, Heartbeat, ServiceState, Side, Verdict};
