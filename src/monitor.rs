@@ -99,7 +99,7 @@ pub fn run(
                 .with_context(|| format!("link {target}: opening"))?;
             let is_slcan = matches!(target, LinkTarget::Slcan(_));
             if is_slcan {
-                port.write_all(format!("C\r{}\rO\r", slcan::BITRATE_COMMAND).as_bytes())
+                port.write_all(slcan::OPEN_COMMANDS)
                     .with_context(|| format!("link {target}: opening the CAN channel"))?;
             }
             let (mut decoder, mut assembler, mut line) =

@@ -2,6 +2,7 @@
 //! in the wheel tracks, anything too tall under the belly, and ground that should be
 //! seen but is not (gaps, drop-offs).
 
+use super::plane::PlaneFit;
 use super::{Frame, Region};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
@@ -231,24 +232,15 @@ impl Recent {
         let Some((xl, _)) = self.last() else {
             return 0.0;
         };
-        let pts = self.cells[..self.len]
+        // One strip: PlaneFit fits z = a·x + c (b = 0); None with fewer than two x.
+        let mut fit = PlaneFit::default();
+        for &(x, z) in self.cells[..self.len]
             .iter()
-            .filter(|(x, _)| xl - x <= Self::SPAN_M);
-        let (mut n, mut sx, mut sz, mut sxx, mut sxz) = (0.0f32, 0.0, 0.0, 0.0, 0.0);
-        for &(x, z) in pts {
-            let x = x - xl;
-            n += 1.0;
-            sx += x;
-            sz += z;
-            sxx += x * x;
-            sxz += x * z;
+            .filter(|(x, _)| xl - x <= Self::SPAN_M)
+        {
+            fit.add(f64::from(x - xl), 0.0, f64::from(z), 1.0);
         }
-        let den = n * sxx - sx * sx;
-        if n < 2.0 || den <= 1e-9 {
-            0.0
-        } else {
-            (n * sxz - sx * sz) / den
-        }
+        fit.solve().map_or(0.0, |p| p.a as f32)
     }
 }
 

@@ -10,8 +10,9 @@ use rover_terrain_proto::can::{self, Frame};
 use super::{link_err, proto, Transport, WRITE_TIMEOUT};
 use crate::Error;
 
-/// The bus speed command sent at open: `S6` = 500 kbit/s.
-pub const BITRATE_COMMAND: &str = "S6";
+/// What opens an adapter's CAN channel: close it (`C`), set 500 kbit/s (`S6`), open
+/// it (`O`).
+pub const OPEN_COMMANDS: &[u8] = b"C\rS6\rO\r";
 
 /// One frame as an SLCAN transmit command, `\r` included.
 pub fn encode(f: &Frame) -> heapless::String<32> {
@@ -64,7 +65,7 @@ impl SlcanTransport {
             .timeout(WRITE_TIMEOUT)
             .open()
             .map_err(|e| link_err(&format!("slcan:{path}"), e))?;
-        port.write_all(format!("C\r{BITRATE_COMMAND}\rO\r").as_bytes())
+        port.write_all(OPEN_COMMANDS)
             .map_err(|e| link_err(&format!("slcan:{path}"), e))?;
         Ok(SlcanTransport {
             path: path.to_string(),
