@@ -20,6 +20,61 @@ pub struct Config {
     pub rover: RoverConfig,
     /// Voxel grid and analysis parameters.
     pub analysis: AnalysisConfig,
+    /// Where verdicts go (`run`).
+    pub link: LinkConfig,
+    /// The service loop: timeouts, heartbeat, metrics, logging (`run`).
+    pub service: ServiceConfig,
+}
+
+/// `[link]`: where `run` sends verdicts.
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LinkConfig {
+    /// `serial:PATH`, `slcan:PATH`, `can:IFACE` or `stdout` (JSON lines).
+    pub target: String,
+    /// Serial speed for `serial:` and `slcan:` links, baud.
+    pub baud: u32,
+}
+
+impl Default for LinkConfig {
+    fn default() -> Self {
+        LinkConfig {
+            target: "stdout".into(),
+            baud: crate::link::DEFAULT_BAUD,
+        }
+    }
+}
+
+/// `[service]`: the `run` loop.
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ServiceConfig {
+    /// No frame for this long and the verdict is "unknown" (the controller stops), ms.
+    pub frame_timeout_ms: u64,
+    /// Heartbeat period, ms; while no frames arrive, an "unknown" verdict is sent
+    /// every period too.
+    pub heartbeat_ms: u64,
+    /// Period of the metrics log line and the systemd STATUS, seconds.
+    pub stats_interval_s: u64,
+    /// Frame buffers allocated at start and reused (camera, queue, analysis), 3..=16.
+    pub pool_frames: u32,
+    /// Log level when RUST_LOG is not set: off, error, warn, info, debug or trace.
+    pub log_level: String,
+    /// A recorded source (`fake:`) starts again at its end instead of ending the run.
+    pub loop_replay: bool,
+}
+
+impl Default for ServiceConfig {
+    fn default() -> Self {
+        ServiceConfig {
+            frame_timeout_ms: 250,
+            heartbeat_ms: 100,
+            stats_interval_s: 5,
+            pool_frames: 3,
+            log_level: "info".into(),
+            loop_replay: false,
+        }
+    }
 }
 
 /// `[camera]`: the image the camera is expected to deliver and how pixels map to rays.
@@ -46,6 +101,13 @@ pub struct CameraConfig {
     pub cx: Option<f64>,
     /// Pinhole principal point v, pixels.
     pub cy: Option<f64>,
+    /// The camera `run` reads: `freenect[:INDEX]`, `v4l:PATH` (or `v4l:NAME`), or
+    /// `fake:PATH`; unset = the bundled fixtures through the fake camera.
+    pub source: Option<String>,
+    /// Frame rate asked of a V4L2 camera, frames per second.
+    pub fps: u32,
+    /// Millimetres per unit of a V4L2 camera's Z16/Y16 pixels (RealSense D4xx: 1.0).
+    pub depth_scale_mm: f64,
 }
 
 /// `[mount]`: the camera's pose in the rover body frame (REP 103: x forward, y left,
@@ -120,6 +182,9 @@ impl Default for CameraConfig {
             fy: None,
             cx: None,
             cy: None,
+            source: None,
+            fps: 30,
+            depth_scale_mm: 1.0,
         }
     }
 }
@@ -287,6 +352,15 @@ impl Config {
             positive("camera.fx", fx)?;
             positive("camera.fy", fy)?;
         }
+        if let Some(src) = &c.source {
+            if let Err(e) = src.parse::<rover_terrain_drivers::CameraSpec>() {
+                return Err(("camera.source", e.to_string()));
+            }
+        }
+        if !(1..=240).contains(&c.fps) {
+            return Err(("camera.fps", format!("must be 1..=240, got {}", c.fps)));
+        }
+        positive("camera.depth_scale_mm", c.depth_scale_mm)?;
         let m = &self.mount;
         for (key, v) in [
             ("mount.x_m", m.x_m),
@@ -362,6 +436,46 @@ impl Config {
         }
         if a.gap_min_cells == 0 {
             return Err(("analysis.gap_min_cells", "must be at least 1".into()));
+        }
+        if let Err(e) = self.link.target.parse::<crate::link::LinkTarget>() {
+            return Err(("link.target", e.to_string()));
+        }
+        if self.link.baud == 0 {
+            return Err(("link.baud", "must be positive".into()));
+        }
+        let sv = &self.service;
+        if !(10..=60_000).contains(&sv.frame_timeout_ms) {
+            return Err((
+                "service.frame_timeout_ms",
+                format!("must be 10..=60000, got {}", sv.frame_timeout_ms),
+            ));
+        }
+        if !(10..=10_000).contains(&sv.heartbeat_ms) {
+            return Err((
+                "service.heartbeat_ms",
+                format!("must be 10..=10000, got {}", sv.heartbeat_ms),
+            ));
+        }
+        if !(1..=3600).contains(&sv.stats_interval_s) {
+            return Err((
+                "service.stats_interval_s",
+                format!("must be 1..=3600, got {}", sv.stats_interval_s),
+            ));
+        }
+        if !(3..=16).contains(&sv.pool_frames) {
+            return Err((
+                "service.pool_frames",
+                format!("must be 3..=16, got {}", sv.pool_frames),
+            ));
+        }
+        if sv.log_level.parse::<log::LevelFilter>().is_err() {
+            return Err((
+                "service.log_level",
+                format!(
+                    "must be off, error, warn, info, debug or trace, got {:?}",
+                    sv.log_level
+                ),
+            ));
         }
         let cells = |len: f64| (len / a.voxel_m).ceil();
         let voxels = cells(a.corridor_length_m)
@@ -454,6 +568,18 @@ mod tests {
         assert!(e.contains("analysis.min_seen_fraction"), "{e}");
         let e = err("[camera]\nhfov_deg = nan\n");
         assert!(e.contains("finite"), "{e}");
+        let e = err("[camera]\nsource = \"webcam:0\"\n");
+        assert!(e.contains("camera.source") && e.contains("line 2"), "{e}");
+        let e = err("[link]\ntarget = \"udp:1.2.3.4\"\n");
+        assert!(e.contains("link.target") && e.contains("line 2"), "{e}");
+        let e = err("[service]\nframe_timeout_ms = 0\n");
+        assert!(e.contains("service.frame_timeout_ms"), "{e}");
+        let e = err("[service]\npool_frames = 1\n");
+        assert!(e.contains("service.pool_frames"), "{e}");
+        let e = err("[service]\nlog_level = \"loud\"\n");
+        assert!(e.contains("service.log_level"), "{e}");
+        let e = err("[camera]\ndepth_scale_mm = -1\n");
+        assert!(e.contains("camera.depth_scale_mm"), "{e}");
     }
 
     #[test]

@@ -16,6 +16,7 @@ pub mod grid;
 pub mod link;
 pub mod pipeline;
 pub mod projection;
+pub mod service;
 pub mod sim;
 pub mod validate;
 pub mod verdict;

@@ -1,6 +1,8 @@
 //! The rover-terrain command line.
 
+mod logging;
 mod monitor;
+mod soak;
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -9,9 +11,10 @@ use std::process::ExitCode;
 use anyhow::Context;
 use clap::{Parser, Subcommand};
 use rover_terrain::link::{self, wire, LinkTarget, Resilient};
+use rover_terrain::service;
 use rover_terrain::validate;
 use rover_terrain::{Config, Error, Pipeline, Verdict};
-use rover_terrain_drivers::{CameraSpec, DepthCamera, DepthFrame, FakeCamera, FrameStatus};
+use rover_terrain_drivers::{CameraSpec, DepthCamera, DepthFrame, FakeCamera, Faults, FrameStatus};
 
 /// Terrain analysis from a depth camera for a six-wheeled rocker rover.
 #[derive(Parser, Debug)]
@@ -23,6 +26,46 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Run the on-board service: read the camera, analyse every frame, send each
+    /// verdict over the link, heartbeats in between; systemd notify and watchdog when
+    /// run under systemd. Stops on SIGTERM/SIGINT with a final stop verdict.
+    ///
+    /// With no arguments: the bundled fixtures through the fake camera at 30 Hz,
+    /// verdicts and heartbeats as JSON lines on stdout.
+    Run {
+        /// Config file (TOML); `[camera] source`, `[link]` and `[service]` apply.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// The camera (overrides `[camera] source`): freenect[:INDEX], v4l:PATH or fake:PATH.
+        #[arg(long)]
+        camera: Option<CameraSpec>,
+        /// The link (overrides `[link] target`): serial:PATH, slcan:PATH, can:IFACE or stdout.
+        #[arg(long)]
+        link: Option<LinkTarget>,
+        /// Serial speed (overrides `[link] baud`).
+        #[arg(long)]
+        baud: Option<u32>,
+        /// Stop after this many frames analysed.
+        #[arg(long)]
+        frames: Option<u64>,
+        /// Replay a recording in a loop (sets `[service] loop_replay`).
+        #[arg(long = "loop")]
+        looping: bool,
+        /// Test only: the fake camera stalls at frame AT for COUNT frame periods.
+        #[arg(long, hide = true, value_name = "AT:COUNT")]
+        inject_stall: Option<String>,
+        /// Test only: the fake camera vanishes at frame AT (and is reopened).
+        #[arg(long, hide = true, value_name = "AT")]
+        inject_disconnect: Option<u64>,
+        /// Test only: frame AT of the fake camera arrives corrupt.
+        #[arg(long, hide = true, value_name = "AT")]
+        inject_corrupt: Option<u64>,
+    },
+    /// Validate a config file and print the effective values (every key) as TOML.
+    CheckConfig {
+        /// The config file.
+        file: PathBuf,
+    },
     /// Analyse depth frames and print one JSON verdict per frame (JSON Lines).
     ///
     /// INPUT is a .pgm/.png depth image (16-bit, millimetres), a directory of them
@@ -90,8 +133,14 @@ enum Command {
         /// Timed iterations after the warm-up.
         #[arg(long, default_value_t = 1000)]
         iterations: usize,
-        /// A depth image, directory or session (its first frame is used).
-        input: PathBuf,
+        /// Instead: run the whole service this many seconds at the recording's pace
+        /// (30 Hz) over a pseudo-terminal and report latency, drops and memory.
+        #[arg(long, value_name = "SECONDS")]
+        soak: Option<f64>,
+        /// A depth image, directory or session (its first frame is used; with --soak
+        /// all of it, looping; default the bundled fixtures).
+        #[arg(required_unless_present = "soak")]
+        input: Option<PathBuf>,
     },
     /// Run the fixture suite against the expected verdicts and write the report.
     Validate {
@@ -143,9 +192,18 @@ const EXIT_CONFIG: u8 = 2;
 const EXIT_FAILURE: u8 = 1;
 
 fn main() -> ExitCode {
-    // Logs to stderr; RUST_LOG sets the level (default: warnings and errors).
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or("warn")).init();
     let cli = Cli::parse();
+    // Logs to stderr; RUST_LOG wins over the config's level; the service logs at
+    // info by default, the one-shot commands only warnings and errors.
+    let level = match &cli.command {
+        Command::Run { config, .. } => config
+            .as_deref()
+            .and_then(|p| Config::load(p).ok())
+            .map_or_else(|| "info".to_string(), |c| c.service.log_level),
+        Command::Bench { soak: Some(_), .. } => "info".into(),
+        _ => "warn".into(),
+    };
+    logging::init(&level);
     match run(cli) {
         Ok(code) => code,
         Err(e) => {
@@ -180,6 +238,48 @@ fn bundled(rel: &str) -> PathBuf {
 
 fn run(cli: Cli) -> anyhow::Result<ExitCode> {
     match cli.command {
+        Command::Run {
+            config,
+            camera,
+            link,
+            baud,
+            frames,
+            looping,
+            inject_stall,
+            inject_disconnect,
+            inject_corrupt,
+        } => {
+            let mut config = load_config(config.as_deref())?;
+            config.service.loop_replay |= looping;
+            let default_camera = CameraSpec::Fake(bundled("fixtures/scenes"));
+            let mut options = service::Options::from_config(config, default_camera)?;
+            if let Some(c) = camera {
+                options.camera = c;
+            }
+            if let Some(l) = link {
+                options.link = l;
+            }
+            if let Some(b) = baud {
+                anyhow::ensure!(b > 0, "--baud must be positive");
+                options.baud = b;
+            }
+            options.frames = frames;
+            options.faults = Faults {
+                stall: inject_stall.as_deref().map(parse_stall).transpose()?,
+                disconnect_at: inject_disconnect,
+                corrupt_at: inject_corrupt,
+            };
+            run_service(options)
+        }
+        Command::CheckConfig { file } => {
+            let config = Config::load(&file)?;
+            print!(
+                "# {}: valid; the effective configuration\n{}",
+                file.display(),
+                toml::to_string(&config).context("printing the config")?
+            );
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Analyze {
             config,
             format,
@@ -252,10 +352,24 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         } => monitor::run(&link, baud, count, deadline_ms),
         Command::Bench {
             config,
-            iterations,
+            iterations: _,
+            soak: Some(seconds),
             input,
         } => {
             let config = load_config(config.as_deref())?;
+            let input = input.unwrap_or_else(|| bundled("fixtures/scenes"));
+            let report = soak::run(config, CameraSpec::Fake(input), seconds)?;
+            println!("{report}");
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Bench {
+            config,
+            iterations,
+            soak: None,
+            input,
+        } => {
+            let config = load_config(config.as_deref())?;
+            let input = input.context("bench needs an INPUT")?;
             anyhow::ensure!(iterations > 0, "--iterations must be at least 1");
             let mut pipeline = Pipeline::new(config)?;
             let mut camera = FakeCamera::open(&input)?;
@@ -310,6 +424,59 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
             Ok(ExitCode::SUCCESS)
         }
     }
+}
+
+/// `AT:COUNT` for `--inject-stall`.
+fn parse_stall(s: &str) -> anyhow::Result<(u64, u64)> {
+    let (at, count) = s.split_once(':').context("--inject-stall takes AT:COUNT")?;
+    Ok((
+        at.parse().context("--inject-stall AT")?,
+        count.parse().context("--inject-stall COUNT")?,
+    ))
+}
+
+/// SIGTERM and SIGINT, as a channel the service listens to; the handle closes it.
+fn shutdown_on_signals() -> anyhow::Result<(
+    crossbeam_channel::Receiver<()>,
+    signal_hook::iterator::Handle,
+)> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
+    let (tx, rx) = crossbeam_channel::bounded(1);
+    let mut signals = signal_hook::iterator::Signals::new([SIGTERM, SIGINT])
+        .context("installing signal handlers")?;
+    let handle = signals.handle();
+    std::thread::Builder::new()
+        .name("signals".into())
+        .spawn(move || {
+            if let Some(sig) = signals.forever().next() {
+                log::info!("signal {sig}: shutting down");
+                let _ = tx.send(());
+            }
+        })
+        .context("starting the signal thread")?;
+    Ok((rx, handle))
+}
+
+/// `run`: the service until a signal or the end of a recording.
+fn run_service(options: service::Options) -> anyhow::Result<ExitCode> {
+    let notifier = service::Notifier::from_env()?;
+    let (shutdown, signals) = shutdown_on_signals()?;
+    let result = service::run(options, notifier, shutdown);
+    signals.close();
+    let summary = result?;
+    log::info!(
+        "stopped ({:?}): {} frames in, {} analysed, {} dropped, {} rejected, {} unknown sent, \
+         {} link failures, arrival→link {}",
+        summary.reason,
+        summary.frames_in,
+        summary.analysed,
+        summary.dropped,
+        summary.rejected,
+        summary.unknown_sent,
+        summary.link_failures,
+        summary.latency
+    );
+    Ok(ExitCode::SUCCESS)
 }
 
 /// Record a camera into a fakenect session.

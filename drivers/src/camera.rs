@@ -116,8 +116,44 @@ pub fn list_cameras() -> Vec<String> {
     out
 }
 
-/// Open the camera `spec` names.
+/// What a live camera is asked to deliver (from the `[camera]` config section).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraOptions {
+    /// Image width, pixels (V4L2).
+    pub width: u32,
+    /// Image height, pixels (V4L2).
+    pub height: u32,
+    /// Frame rate, frames per second (V4L2).
+    pub fps: u32,
+    /// Millimetres per unit of a 16-bit depth pixel (V4L2 Z16/Y16).
+    pub depth_scale_mm: f32,
+}
+
+impl Default for CameraOptions {
+    /// A Kinect-like 640×480 at 30 Hz, 1 mm per unit.
+    fn default() -> Self {
+        CameraOptions {
+            width: 640,
+            height: 480,
+            fps: 30,
+            depth_scale_mm: 1.0,
+        }
+    }
+}
+
+/// Open the camera `spec` names, with the default [`CameraOptions`].
 pub fn open(spec: &CameraSpec) -> Result<Box<dyn DepthCamera>, DriverError> {
+    open_with(spec, &CameraOptions::default())
+}
+
+/// Open the camera `spec` names; a V4L2 camera is set to `options`' size, rate and
+/// depth scale (a Kinect always streams 640×480 at 30 Hz in millimetres).
+pub fn open_with(
+    spec: &CameraSpec,
+    options: &CameraOptions,
+) -> Result<Box<dyn DepthCamera>, DriverError> {
+    #[cfg(not(feature = "v4l"))]
+    let _ = options;
     match spec {
         CameraSpec::Fake(p) => Ok(Box::new(crate::FakeCamera::open(p)?)),
         #[cfg(feature = "freenect")]
@@ -127,7 +163,13 @@ pub fn open(spec: &CameraSpec) -> Result<Box<dyn DepthCamera>, DriverError> {
             "built without libfreenect support: rebuild with `--features freenect` (needs libfreenect-dev)".into(),
         )),
         #[cfg(feature = "v4l")]
-        CameraSpec::V4l(p) => Ok(Box::new(crate::v4l::V4lCamera::open(p, 640, 480, 30, 1.0)?)),
+        CameraSpec::V4l(p) => Ok(Box::new(crate::v4l::V4lCamera::open(
+            p,
+            options.width,
+            options.height,
+            options.fps,
+            options.depth_scale_mm,
+        )?)),
         #[cfg(not(feature = "v4l"))]
         CameraSpec::V4l(p) => Err(DriverError::NoDevice(format!(
             "v4l:{}: built without V4L2 support: rebuild with `--features v4l` (needs libclang-dev)",

@@ -56,6 +56,15 @@ pub struct FakeCamera {
     calls: u64,
     stalled: u64,
     started: Option<(std::time::Instant, f64)>,
+    cache: Option<Vec<Cached>>,
+}
+
+/// A frame decoded ahead of time by [`FakeCamera::preload`]: its pixels, or what was
+/// wrong with its file.
+#[derive(Debug)]
+enum Cached {
+    Frame(DepthFrame),
+    Bad(String),
 }
 
 impl FakeCamera {
@@ -116,7 +125,43 @@ impl FakeCamera {
             calls: 0,
             stalled: 0,
             started: None,
+            cache: None,
         })
+    }
+
+    /// Decode every frame now and replay from memory, so that delivering a frame is a
+    /// copy (no file reads, no decoder allocations: the service's zero-allocation
+    /// hot path). Only if one pass fits in `max_bytes` of pixels; otherwise the camera
+    /// stays file-backed. A frame that cannot be decoded is remembered as such and
+    /// delivered as a `Malformed` error each time its turn comes.
+    pub fn preload(mut self, max_bytes: usize) -> Self {
+        let mut cache = Vec::with_capacity(self.len());
+        let mut bytes = 0usize;
+        let mut scratch = Vec::new();
+        for i in 0..self.len() {
+            let mut frame = DepthFrame::default();
+            let read = match &self.source {
+                Source::Images(v) => read_depth_image(&v[i], &mut scratch, &mut frame),
+                Source::Session(s) => s.read_depth(i, &mut scratch, &mut frame),
+            };
+            cache.push(match read {
+                Ok(()) => {
+                    bytes += frame.pixels().len() * 2;
+                    Cached::Frame(frame)
+                }
+                Err(e) => Cached::Bad(e.to_string()),
+            });
+            if bytes > max_bytes {
+                return self;
+            }
+        }
+        self.cache = Some(cache);
+        self
+    }
+
+    /// Whether frames are replayed from memory (see [`FakeCamera::preload`]).
+    pub fn is_preloaded(&self) -> bool {
+        self.cache.is_some()
     }
 
     /// Deliver at this pace.
@@ -209,9 +254,18 @@ impl DepthCamera for FakeCamera {
         if let Some((at, count)) = self.faults.stall {
             if call >= at && self.stalled < count {
                 self.stalled += 1;
+                // At the recorded pace a stalled camera takes its frame period to
+                // give up, as a live one would; the replay clock restarts after.
+                let period_ms = if self.pace == Pace::Recorded {
+                    self.started = None;
+                    std::thread::sleep(std::time::Duration::from_secs_f64(IMAGE_SEQUENCE_PERIOD_S));
+                    (IMAGE_SEQUENCE_PERIOD_S * 1e3).round() as u64
+                } else {
+                    0
+                };
                 return Err(DriverError::Timeout {
                     camera: self.label.clone(),
-                    timeout_ms: 0,
+                    timeout_ms: period_ms,
                 });
             }
         }
@@ -232,6 +286,28 @@ impl DepthCamera for FakeCamera {
         self.next += 1;
         self.last = Some(i);
         self.wait_for(i);
+        if let Some(cache) = &self.cache {
+            match &cache[i] {
+                Cached::Frame(f) => {
+                    frame
+                        .reshape(f.width(), f.height())
+                        .copy_from_slice(f.pixels());
+                    frame.timestamp_s = match &self.source {
+                        Source::Images(_) => self.seq as f64 * IMAGE_SEQUENCE_PERIOD_S,
+                        Source::Session(_) => f.timestamp_s,
+                    };
+                }
+                Cached::Bad(what) => {
+                    return Err(DriverError::Malformed {
+                        path: self.label.clone().into(),
+                        what: what.clone(),
+                    })
+                }
+            }
+            frame.seq = self.seq;
+            self.seq += 1;
+            return Ok(FrameStatus::Frame);
+        }
         match &self.source {
             Source::Images(v) => {
                 read_depth_image(&v[i], &mut self.scratch, frame)?;
@@ -321,6 +397,40 @@ mod tests {
             outcome,
             ["frame", "timeout", "timeout", "frame", "corrupt", "frame", "gone", "gone"]
         );
+    }
+
+    #[test]
+    fn preloaded_replay_gives_the_same_frames_and_remembers_bad_files() {
+        let dir = tempfile::tempdir().unwrap();
+        for (name, v) in [("a.png", 1u16), ("b.png", 2)] {
+            let f = DepthFrame::from_pixels(2, 1, vec![v, v + 10]);
+            std::fs::write(dir.path().join(name), encode_png_depth(&f)).unwrap();
+        }
+        std::fs::write(dir.path().join("c.png"), b"not a png").unwrap();
+        let mut disk = FakeCamera::open(dir.path()).unwrap();
+        let mut memory = FakeCamera::open(dir.path()).unwrap().preload(1 << 20);
+        assert!(memory.is_preloaded() && !disk.is_preloaded());
+        let (mut a, mut b) = (DepthFrame::default(), DepthFrame::default());
+        for _ in 0..2 {
+            assert_eq!(disk.next_frame(&mut a).unwrap(), FrameStatus::Frame);
+            assert_eq!(memory.next_frame(&mut b).unwrap(), FrameStatus::Frame);
+            assert_eq!(
+                (a.pixels(), a.seq, a.timestamp_s),
+                (b.pixels(), b.seq, b.timestamp_s)
+            );
+        }
+        assert!(matches!(
+            disk.next_frame(&mut a),
+            Err(DriverError::Malformed { .. })
+        ));
+        let e = memory.next_frame(&mut b).unwrap_err();
+        assert!(matches!(e, DriverError::Malformed { .. }), "{e}");
+        assert_eq!(memory.next_frame(&mut b).unwrap(), FrameStatus::EndOfStream);
+        // Too big for the budget: stays on disk.
+        assert!(!FakeCamera::open(dir.path())
+            .unwrap()
+            .preload(2)
+            .is_preloaded());
     }
 
     #[test]

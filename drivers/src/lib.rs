@@ -18,7 +18,9 @@ pub mod image;
 #[cfg(feature = "v4l")]
 pub mod v4l;
 
-pub use camera::{list_cameras, open, CameraSpec, DepthCamera, FrameStatus};
+pub use camera::{
+    list_cameras, open, open_with, CameraOptions, CameraSpec, DepthCamera, FrameStatus,
+};
 pub use error::DriverError;
 pub use fake::{FakeCamera, Faults, Pace};
 pub use frame::{DepthFrame, MAX_HEIGHT, MAX_WIDTH};
