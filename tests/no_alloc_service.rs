@@ -1,0 +1,148 @@
+//! The whole service, once warm, allocates nothing per frame: camera thread (replaying
+//! from memory), analysis, link thread writing COBS frames to a real pseudo-terminal,
+//! heartbeats, and watchdog pings to a real notify socket. A counting global
+//! allocator watches 45 frames (1.5 s) after a warm-up of 15.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::io::Read;
+use std::os::unix::net::UnixDatagram;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::Duration;
+
+use rover_terrain::link::proto::serial::{Decoder, Message};
+use rover_terrain::link::LinkTarget;
+use rover_terrain::service::{self, Notifier, Options, StopReason};
+use rover_terrain::Config;
+use rover_terrain_drivers::{CameraSpec, Faults};
+use serialport::{SerialPort, TTYPort};
+
+struct Counting;
+
+static COUNTING: AtomicBool = AtomicBool::new(false);
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+// Safety: defers every operation to the system allocator; only counts calls.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // Safety: same contract as ours.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // Safety: same contract as ours.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if COUNTING.load(Ordering::Relaxed) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        // Safety: same contract as ours.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+const WARM_UP: usize = 15;
+const WATCHED: usize = 45;
+
+#[test]
+fn the_running_service_allocates_nothing_per_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let socket_path = dir.path().join("notify.sock");
+    let socket = UnixDatagram::bind(&socket_path).unwrap();
+    socket
+        .set_read_timeout(Some(Duration::from_millis(100)))
+        .unwrap();
+    // This test binary holds only this test: setting the environment is safe here.
+    std::env::set_var("NOTIFY_SOCKET", &socket_path);
+    std::env::set_var("WATCHDOG_USEC", "200000");
+    let notifier = Notifier::from_env().unwrap();
+
+    let (mut master, slave) = TTYPort::pair().unwrap();
+    master.set_timeout(Duration::from_millis(100)).unwrap();
+    let mut config = Config::default();
+    config.service.stats_interval_s = 3600;
+    config.service.loop_replay = true;
+    let options = Options {
+        config,
+        camera: CameraSpec::Fake(concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/scenes").into()),
+        link: LinkTarget::Serial(slave.name().unwrap()),
+        baud: 115_200,
+        faults: Faults::default(),
+        frames: None,
+    };
+    let (stop_tx, stop_rx) = crossbeam_channel::bounded::<()>(1);
+
+    // The notify socket reader: counts pings into a stack buffer.
+    let pings = std::sync::Arc::new(AtomicUsize::new(0));
+    let pings_seen = std::sync::Arc::clone(&pings);
+    let notify_reader = std::thread::spawn(move || {
+        let mut buf = [0u8; 512];
+        let mut quiet = 0;
+        while quiet < 20 {
+            match socket.recv(&mut buf) {
+                Ok(n) if &buf[..n] == b"WATCHDOG=1" => {
+                    pings_seen.fetch_add(1, Ordering::Relaxed);
+                    quiet = 0;
+                }
+                Ok(_) => quiet = 0,
+                Err(_) => quiet += 1,
+            }
+        }
+    });
+
+    // The pty reader: turns counting on after the warm-up, off after the watched frames,
+    // then stops the service.
+    let reader = std::thread::spawn(move || {
+        let mut decoder = Decoder::new();
+        let mut buf = [0u8; 1024];
+        let (mut verdicts, mut heartbeats) = (0usize, 0usize);
+        while verdicts < WARM_UP + WATCHED {
+            let Ok(n) = master.read(&mut buf) else {
+                continue;
+            };
+            for &b in &buf[..n] {
+                match decoder.push(b) {
+                    Some(Ok(Message::Verdict(_))) => {
+                        verdicts += 1;
+                        if verdicts == WARM_UP {
+                            COUNTING.store(true, Ordering::SeqCst);
+                        }
+                        if verdicts == WARM_UP + WATCHED {
+                            COUNTING.store(false, Ordering::SeqCst);
+                        }
+                    }
+                    Some(Ok(Message::Heartbeat(_))) if COUNTING.load(Ordering::Relaxed) => {
+                        heartbeats += 1
+                    }
+                    _ => {}
+                }
+            }
+        }
+        drop(stop_tx);
+        (heartbeats, master)
+    });
+
+    let summary = service::run(options, notifier, stop_rx).unwrap();
+    let (heartbeats, _master) = reader.join().unwrap();
+    notify_reader.join().unwrap();
+    drop(slave);
+
+    assert_eq!(summary.reason, StopReason::Signal);
+    assert!(summary.analysed >= (WARM_UP + WATCHED) as u64);
+    assert!(heartbeats >= 5, "heartbeats went out while watched: {heartbeats}");
+    assert!(
+        pings.load(Ordering::Relaxed) >= 5,
+        "watchdog pings went out: {}",
+        pings.load(Ordering::Relaxed)
+    );
+    assert_eq!(
+        ALLOCATIONS.load(Ordering::SeqCst),
+        0,
+        "allocations while {WATCHED} frames went camera → analysis → pty"
+    );
+}
