@@ -251,8 +251,15 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
         } => {
             let mut config = load_config(config.as_deref())?;
             config.service.loop_replay |= looping;
-            let default_camera = CameraSpec::Fake(bundled("fixtures/scenes"));
-            let mut options = service::Options::from_config(config, default_camera)?;
+            let fixtures = bundled("fixtures/scenes");
+            if camera.is_none() && config.camera.source.is_none() && !fixtures.exists() {
+                anyhow::bail!(
+                    "no camera: set [camera] source in the config or give --camera \
+                     (the bundled fixtures, the default, are not at {})",
+                    fixtures.display()
+                );
+            }
+            let mut options = service::Options::from_config(config, CameraSpec::Fake(fixtures))?;
             if let Some(c) = camera {
                 options.camera = c;
             }

@@ -134,7 +134,10 @@ fn the_running_service_allocates_nothing_per_frame() {
 
     assert_eq!(summary.reason, StopReason::Signal);
     assert!(summary.analysed >= (WARM_UP + WATCHED) as u64);
-    assert!(heartbeats >= 5, "heartbeats went out while watched: {heartbeats}");
+    assert!(
+        heartbeats >= 5,
+        "heartbeats went out while watched: {heartbeats}"
+    );
     assert!(
         pings.load(Ordering::Relaxed) >= 5,
         "watchdog pings went out: {}",

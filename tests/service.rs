@@ -54,7 +54,10 @@ impl Harness {
             let mut buf = [0u8; 1024];
             while let Ok(n) = socket.recv(&mut buf) {
                 let text = String::from_utf8_lossy(&buf[..n]).into_owned();
-                if notify_tx.send((Instant::now(), Event::Notify(text))).is_err() {
+                if notify_tx
+                    .send((Instant::now(), Event::Notify(text)))
+                    .is_err()
+                {
                     break;
                 }
             }
@@ -183,7 +186,10 @@ fn the_pty_gets_what_analyze_says_and_systemd_hears_ready_watchdog_stopping() {
     h.drain();
 
     // The bundled fixtures, as `analyze --format wire` sees them.
-    let out = bin().args(["analyze", "--format", "wire"]).output().unwrap();
+    let out = bin()
+        .args(["analyze", "--format", "wire"])
+        .output()
+        .unwrap();
     assert!(out.status.success());
     let expected: Vec<serde_json::Value> = String::from_utf8(out.stdout)
         .unwrap()
@@ -227,7 +233,10 @@ fn the_pty_gets_what_analyze_says_and_systemd_hears_ready_watchdog_stopping() {
         pings.len() >= 2,
         "watchdog pings while frames flow: {notes:?}"
     );
-    assert!(ready < pings[0] && *pings.last().unwrap() < stopping, "{notes:?}");
+    assert!(
+        ready < pings[0] && *pings.last().unwrap() < stopping,
+        "{notes:?}"
+    );
     // The first verdict was on the pty before READY=1 went out.
     let first_verdict_at = h
         .log
@@ -446,7 +455,10 @@ fn under_systemd_logs_carry_priorities_and_no_timestamps() {
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("INFO") && !stderr.contains("<6>"), "{stderr}");
+    assert!(
+        stderr.contains("INFO") && !stderr.contains("<6>"),
+        "{stderr}"
+    );
 }
 
 #[test]
@@ -463,7 +475,10 @@ fn check_config_prints_the_effective_values_or_names_the_bad_key() {
     assert_eq!(printed.service.frame_timeout_ms, 400);
     assert_eq!(printed.link.target, "serial:/dev/ttyUSB0");
     assert_eq!(printed.mount, rover_terrain::config::MountConfig::default());
-    assert!(text.contains("pitch_deg = 30.0"), "every key printed: {text}");
+    assert!(
+        text.contains("pitch_deg = 30.0"),
+        "every key printed: {text}"
+    );
 
     let bad = dir.path().join("bad.toml");
     std::fs::write(&bad, "[service]\nheartbeat_ms = 0\n").unwrap();
