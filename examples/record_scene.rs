@@ -1,5 +1,6 @@
 //! Write rendered scenes as a libfreenect fakenect session (INDEX.txt, d-*.pgm raw
-//! 11-bit little-endian, device.json), e.g. to replay through libfreenect's fakenect:
+//! 11-bit little-endian, a-*.dump tilt states at the configured mount,
+//! device.json), e.g. to replay through libfreenect's fakenect:
 //! `cargo run --example record_scene -- OUT_DIR`.
 use rover_terrain::sim::{self, Element, Extent, Terrain};
 use rover_terrain::Config;
@@ -32,7 +33,11 @@ fn main() {
     .expect("new session");
     for (i, t) in scenes.iter().enumerate() {
         let f = sim::render(t, &config);
-        w.write_depth(&f, 1_700_000_000.0 + i as f64 / 30.0, 1000 + 33 * i as u32)
-            .expect("frame written");
+        let (t, stamp) = (1_700_000_000.0 + i as f64 / 30.0, 1000 + 33 * i as u32);
+        w.write_depth(&f, t, stamp).expect("frame written");
+        // The still Kinect's accelerometer at the configured mount, as `record`
+        // snapshots it after each frame.
+        let tilt = rover_terrain::level::tilt_for(config.mount.pitch_deg, config.mount.roll_deg);
+        w.write_tilt(&tilt, t + 0.001, stamp).expect("tilt written");
     }
 }

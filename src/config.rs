@@ -127,6 +127,9 @@ pub struct MountConfig {
     pub pitch_deg: f64,
     /// Yaw, degrees (positive = looking left).
     pub yaw_deg: f64,
+    /// Use the camera's accelerometer (Kinect) for pitch and roll instead of
+    /// `pitch_deg` and `roll_deg`, which stay the values until a reading arrives.
+    pub auto_level: bool,
 }
 
 /// `[rover]`: the rover's geometry and what it can climb.
@@ -198,6 +201,7 @@ impl Default for MountConfig {
             roll_deg: 0.0,
             pitch_deg: 30.0,
             yaw_deg: 0.0,
+            auto_level: false,
         }
     }
 }

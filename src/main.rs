@@ -195,16 +195,18 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     // Logs to stderr; RUST_LOG wins over the config's level; the service logs at
     // info by default, the one-shot commands only warnings and errors.
-    let level = match &cli.command {
-        Command::Run { config, .. } => config
-            .as_deref()
-            .and_then(|p| Config::load(p).ok())
-            .map_or_else(|| "info".to_string(), |c| c.service.log_level),
-        Command::Bench { soak: Some(_), .. } => "info".into(),
+    // The service's config is read once, here, for its log level too.
+    let service_config = match &cli.command {
+        Command::Run { config, .. } => Some(load_config(config.as_deref())),
+        _ => None,
+    };
+    let level = match (&cli.command, &service_config) {
+        (_, Some(Ok(c))) => c.service.log_level.clone(),
+        (Command::Run { .. } | Command::Bench { soak: Some(_), .. }, _) => "info".into(),
         _ => "warn".into(),
     };
     logging::init(&level);
-    match run(cli) {
+    match run(cli, service_config) {
         Ok(code) => code,
         Err(e) => {
             eprintln!("rover-terrain: {e:#}");
@@ -236,10 +238,10 @@ fn bundled(rel: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
 }
 
-fn run(cli: Cli) -> anyhow::Result<ExitCode> {
+fn run(cli: Cli, service_config: Option<anyhow::Result<Config>>) -> anyhow::Result<ExitCode> {
     match cli.command {
         Command::Run {
-            config,
+            config: _,
             camera,
             link,
             baud,
@@ -249,7 +251,7 @@ fn run(cli: Cli) -> anyhow::Result<ExitCode> {
             inject_disconnect,
             inject_corrupt,
         } => {
-            let mut config = load_config(config.as_deref())?;
+            let mut config = service_config.context("the service config was not loaded")??;
             config.service.loop_replay |= looping;
             let fixtures = bundled("fixtures/scenes");
             if camera.is_none() && config.camera.source.is_none() && !fixtures.exists() {
@@ -529,6 +531,10 @@ fn record(
             _ => wall0 + start.elapsed().as_secs_f64(),
         };
         writer.write_depth(&frame, t, n as u32)?;
+        // The tilt state with each frame, as libfreenect's recorder snapshots it.
+        if let Some(tilt) = cam.tilt_state() {
+            writer.write_tilt(&tilt, t, n as u32)?;
+        }
         n += 1;
     }
     eprintln!("recorded {n} frames into {}", out.display());
@@ -560,6 +566,10 @@ fn for_each_verdict(
     mut on_verdict: impl FnMut(&Verdict, Option<&Path>, std::time::Instant) -> anyhow::Result<()>,
 ) -> anyhow::Result<bool> {
     let (w, h) = (config.camera.width as usize, config.camera.height as usize);
+    let mut leveler = config
+        .mount
+        .auto_level
+        .then(rover_terrain::level::Leveler::new);
     let mut pipeline = Pipeline::new(config)?;
     let mut frame = DepthFrame::with_capacity(w, h);
     let mut failed = false;
@@ -588,6 +598,23 @@ fn for_each_verdict(
                     eprintln!("rover-terrain: {}: {e}", camera.describe());
                     failed = true;
                     break;
+                }
+            }
+            if let Some(l) = leveler.as_mut() {
+                let due = rover_terrain::level::read_due(index);
+                if let Some(a) = due
+                    .then(|| camera.tilt_state())
+                    .flatten()
+                    .and_then(|t| l.update(&t))
+                {
+                    match pipeline.set_attitude(a) {
+                        Ok(()) => log::info!(
+                            "auto-level: pitch {:.2}°, roll {:.2}°",
+                            a.pitch_deg,
+                            a.roll_deg
+                        ),
+                        Err(e) => log::warn!("auto-level ignored: {e}"),
+                    }
                 }
             }
             frame.seq = index;

@@ -24,6 +24,7 @@ pub struct Pipeline {
     verdict: Verdict,
     min_mm: u16,
     max_mm: u16,
+    leveled: bool,
 }
 
 impl Pipeline {
@@ -51,7 +52,30 @@ impl Pipeline {
             verdict: Verdict::default(),
             min_mm,
             max_mm,
+            leveled: false,
         })
+    }
+
+    /// Analyse from now on with the camera at this attitude (auto-level): rebuilds the
+    /// ray tables and the analysis state for the new mount. Allocates; called only
+    /// when the attitude changes, not per frame. Yaw and position stay configured.
+    pub fn set_attitude(&mut self, a: crate::level::Attitude) -> Result<(), Error> {
+        let mut config = self.config.clone();
+        config.mount.pitch_deg = a.pitch_deg;
+        config.mount.roll_deg = a.roll_deg;
+        config.validate().map_err(|(key, why)| {
+            Error::Setup(format!(
+                "auto-level to pitch {:.1}°, roll {:.1}°: {key}: {why}",
+                a.pitch_deg, a.roll_deg
+            ))
+        })?;
+        let projector = Projector::new(&config, self.projector.width(), self.projector.height());
+        let analyzer = Analyzer::new(&config, GridSpec::from_config(&config), &projector)?;
+        self.projector = projector;
+        self.analyzer = analyzer;
+        self.config = config;
+        self.leveled = true;
+        Ok(())
     }
 
     /// The configuration in force.
@@ -89,6 +113,11 @@ impl Pipeline {
         }
         let v = &mut self.verdict;
         v.frame = frame.seq;
+        v.mount = crate::verdict::MountUsed {
+            pitch_deg: self.config.mount.pitch_deg as f32,
+            roll_deg: self.config.mount.roll_deg as f32,
+            from_accelerometer: self.leveled,
+        };
         let stats = self
             .grid
             .bin(&self.projector, frame.pixels(), self.min_mm, self.max_mm);

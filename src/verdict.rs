@@ -120,6 +120,19 @@ pub struct Verdict {
     pub voxels: u32,
     /// Processing time per stage.
     pub timing_us: StageTimes,
+    /// The camera pitch and roll the frame was analysed with.
+    pub mount: MountUsed,
+}
+
+/// The camera attitude a verdict was computed with (diagnostics).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MountUsed {
+    /// Pitch, degrees, positive looking down.
+    pub pitch_deg: f32,
+    /// Roll, degrees, positive left side up.
+    pub roll_deg: f32,
+    /// Whether they came from the accelerometer (auto-level) rather than the config.
+    pub from_accelerometer: bool,
 }
 
 impl Default for Verdict {
@@ -134,6 +147,7 @@ impl Default for Verdict {
             points_binned: 0,
             voxels: 0,
             timing_us: StageTimes::default(),
+            mount: MountUsed::default(),
         }
     }
 }
@@ -188,6 +202,11 @@ impl Verdict {
             "timing_us": {
                 "bin": r1(t.bin), "voxels": r1(t.voxels), "crossing": r1(t.crossing),
                 "feature": r1(t.feature), "total": r1(t.total),
+            },
+            "mount": {
+                "pitch_deg": r3(self.mount.pitch_deg),
+                "roll_deg": r3(self.mount.roll_deg),
+                "source": if self.mount.from_accelerometer { "accelerometer" } else { "config" },
             },
         })
     }

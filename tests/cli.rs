@@ -419,7 +419,11 @@ fn record_then_replay_is_byte_identical() {
         .map(|e| e.unwrap().file_name())
         .collect();
     names.sort();
-    assert_eq!(names.len(), 5, "INDEX.txt, device.json, 3 frames");
+    assert_eq!(
+        names.len(),
+        8,
+        "INDEX.txt, device.json, 3 frames, 3 tilt states"
+    );
     for n in names {
         assert_eq!(
             std::fs::read(a.join(&n)).unwrap(),

@@ -75,3 +75,37 @@ fn without_a_kinect_the_error_is_clear() {
     assert!(e.contains("Kinect") || e.contains("libfreenect"), "{e}");
     assert!(o.stdout.is_empty(), "no verdict without a camera");
 }
+
+#[test]
+fn the_tilt_state_comes_through_the_real_ffi_for_auto_level() {
+    // The session's a-*.dump files say the camera is pitched 30° down; the config says
+    // 36°. With auto-level, libfreenect's replayed tilt state wins.
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = dir.path().join("auto.toml");
+    std::fs::write(&cfg, "[mount]\npitch_deg = 36.0\nauto_level = true\n").unwrap();
+    let s = session();
+    let out = run(
+        &[
+            "analyze",
+            "--config",
+            cfg.to_str().unwrap(),
+            "--camera",
+            "freenect",
+            "--frames",
+            "3",
+        ],
+        &[("LD_LIBRARY_PATH", FAKENECT_LIB), ("FAKENECT_PATH", &s)],
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let text = String::from_utf8(out.stdout).unwrap();
+    // fakenect replays a tilt dump when it reaches it in the index, after the frame
+    // before it: from the second frame on, the recorded attitude is in use.
+    for line in text.lines().skip(1) {
+        let v: serde_json::Value = serde_json::from_str(line).unwrap();
+        assert_eq!(v["mount"]["source"], "accelerometer", "{line}");
+        let pitch = v["mount"]["pitch_deg"].as_f64().unwrap();
+        assert!((pitch - 30.0).abs() < 0.2, "{pitch}");
+    }
+    assert_eq!(text.lines().count(), 3);
+}

@@ -493,3 +493,30 @@ fn check_config_prints_the_effective_values_or_names_the_bad_key() {
         "{stderr}"
     );
 }
+
+#[test]
+fn the_service_levels_itself_from_recorded_tilt_states() {
+    let dir = tempfile::tempdir().unwrap();
+    let config = write_config(dir.path(), "[mount]\npitch_deg = 36.0\nauto_level = true\n");
+    let out = bin()
+        .args([
+            "run",
+            "--config",
+            &config,
+            "--camera",
+            "fake:fixtures/fakenect/ramp-step",
+        ])
+        .env("RUST_LOG", "info")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    // The session's tilt dumps say 30° (examples/record_scene.rs).
+    let pitch: f64 = stderr
+        .split("auto-level: pitch ")
+        .nth(1)
+        .and_then(|rest| rest.split('°').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no auto-level line: {stderr}"));
+    assert!((pitch - 30.0).abs() < 0.2, "{pitch}");
+}

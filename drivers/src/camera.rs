@@ -33,6 +33,12 @@ pub trait DepthCamera {
     fn last_source(&self) -> Option<&std::path::Path> {
         None
     }
+    /// The camera's tilt state (accelerometer) now, or as recorded with the last
+    /// frame; `None` for cameras without one. May block briefly (a USB control
+    /// transfer on a Kinect): call it about once a second, not every frame.
+    fn tilt_state(&mut self) -> Option<crate::fakenect::TiltState> {
+        None
+    }
 }
 
 /// Which camera to open: the `--camera` argument.

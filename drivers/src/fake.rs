@@ -327,6 +327,16 @@ impl DepthCamera for FakeCamera {
     fn last_source(&self) -> Option<&Path> {
         self.last_path()
     }
+
+    fn tilt_state(&mut self) -> Option<crate::fakenect::TiltState> {
+        match &self.source {
+            Source::Session(s) => {
+                let i = self.last?;
+                s.tilt_at(s.depth_entries()[i].time_s).copied()
+            }
+            Source::Images(_) => None,
+        }
+    }
 }
 
 #[cfg(test)]

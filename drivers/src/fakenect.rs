@@ -169,6 +169,77 @@ fn clamp_mm(mm: f64) -> u16 {
     }
 }
 
+/// Accelerometer counts per g (the Kionix KXSD9 in the Kinect, as libfreenect's
+/// `FREENECT_COUNTS_PER_G`).
+pub const COUNTS_PER_G: f64 = 819.0;
+/// Standard gravity, m/s² (libfreenect's `GRAVITY`).
+pub const GRAVITY: f64 = 9.80665;
+/// Size of libfreenect's `freenect_raw_tilt_state` as `record` dumps it: three
+/// `int16_t`, an `int8_t`, one byte of padding, an `int` status.
+pub const TILT_DUMP_BYTES: usize = 12;
+
+/// The Kinect's tilt state: raw accelerometer counts and the motor's state, as in an
+/// `a-*.dump` file (libfreenect's `freenect_raw_tilt_state`).
+///
+/// Axes (the Kinect's, as the Kinect for Windows SDK documents them): right-handed, y
+/// up, z along the optical axis, x to the camera's left. A level, still Kinect reads
+/// about 819 counts (1 g) on y.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct TiltState {
+    /// Raw accelerometer x, y, z, counts ([`COUNTS_PER_G`] per g).
+    pub accel: [i16; 3],
+    /// The tilt motor's raw angle.
+    pub tilt_angle: i8,
+    /// `freenect_tilt_status_code`: 0 stopped, 1 at limit, 4 moving.
+    pub tilt_status: i32,
+}
+
+impl TiltState {
+    /// The accelerometer in m/s² (libfreenect's `freenect_get_mks_accel`).
+    pub fn accel_mps2(&self) -> [f64; 3] {
+        self.accel.map(|c| f64::from(c) / COUNTS_PER_G * GRAVITY)
+    }
+
+    /// Decode an `a-*.dump` file's bytes (little-endian, as recorded on x86 and ARM).
+    pub fn from_dump(bytes: &[u8], path: &Path) -> Result<Self, DriverError> {
+        if bytes.len() != TILT_DUMP_BYTES {
+            return Err(DriverError::malformed(
+                path,
+                format!(
+                    "a tilt-state dump is {TILT_DUMP_BYTES} bytes, this one {}",
+                    bytes.len()
+                ),
+            ));
+        }
+        let i16_at = |i: usize| i16::from_le_bytes([bytes[i], bytes[i + 1]]);
+        Ok(TiltState {
+            accel: [i16_at(0), i16_at(2), i16_at(4)],
+            tilt_angle: bytes[6] as i8,
+            tilt_status: i32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]),
+        })
+    }
+
+    /// The bytes `record` writes for this state.
+    pub fn to_dump(&self) -> [u8; TILT_DUMP_BYTES] {
+        let mut b = [0u8; TILT_DUMP_BYTES];
+        for (i, c) in self.accel.iter().enumerate() {
+            b[2 * i..2 * i + 2].copy_from_slice(&c.to_le_bytes());
+        }
+        b[6] = self.tilt_angle as u8;
+        b[8..12].copy_from_slice(&self.tilt_status.to_le_bytes());
+        b
+    }
+}
+
+/// One tilt-state entry of a session's index.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TiltEntry {
+    /// Wall-clock time of the reading at recording, seconds.
+    pub time_s: f64,
+    /// The state read.
+    pub state: TiltState,
+}
+
 /// One depth entry of a session's index.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DepthEntry {
@@ -185,6 +256,7 @@ pub struct DepthEntry {
 pub struct Session {
     dir: PathBuf,
     depth: Vec<DepthEntry>,
+    tilt: Vec<TiltEntry>,
     registration: Option<Registration>,
     to_mm: RawToMm,
 }
@@ -201,6 +273,7 @@ impl Session {
         let index = dir.join("INDEX.txt");
         let text = std::fs::read_to_string(&index).map_err(|e| DriverError::io(&index, e))?;
         let mut depth = Vec::new();
+        let mut tilt = Vec::new();
         for (n, line) in text.lines().enumerate() {
             let name = line.trim();
             if name.is_empty() {
@@ -222,12 +295,20 @@ impl Session {
                     index: index.clone(),
                 });
             }
-            if kind == 'd' {
-                depth.push(DepthEntry {
+            match kind {
+                'd' => depth.push(DepthEntry {
                     path,
                     time_s,
                     timestamp,
-                });
+                }),
+                'a' => {
+                    let bytes = std::fs::read(&path).map_err(|e| DriverError::io(&path, e))?;
+                    tilt.push(TiltEntry {
+                        time_s,
+                        state: TiltState::from_dump(&bytes, &path)?,
+                    });
+                }
+                _ => {}
             }
         }
         if depth.is_empty() {
@@ -248,6 +329,7 @@ impl Session {
         Ok(Session {
             dir: dir.to_path_buf(),
             depth,
+            tilt,
             registration,
             to_mm,
         })
@@ -261,6 +343,18 @@ impl Session {
     /// The depth frames, in arrival order.
     pub fn depth_entries(&self) -> &[DepthEntry] {
         &self.depth
+    }
+
+    /// The tilt-state readings, in arrival order.
+    pub fn tilt_entries(&self) -> &[TiltEntry] {
+        &self.tilt
+    }
+
+    /// The last tilt state read at or before `time_s` (the first one if all are
+    /// later), as fakenect replays them; `None` if the session has none.
+    pub fn tilt_at(&self, time_s: f64) -> Option<&TiltState> {
+        let after = self.tilt.partition_point(|e| e.time_s <= time_s);
+        self.tilt.get(after.saturating_sub(1)).map(|e| &e.state)
     }
 
     /// The registration from `device.json`, if the session has one.
@@ -301,8 +395,8 @@ fn parse_entry_name(name: &str) -> Option<(char, f64, u32)> {
     time_s.is_finite().then_some((kind, time_s, timestamp))
 }
 
-/// Writes a session exactly as libfreenect's `record` does (depth frames only, plus
-/// `device.json` when a registration is given).
+/// Writes a session exactly as libfreenect's `record` does (depth frames and tilt
+/// states, plus `device.json` when a registration is given).
 #[derive(Debug)]
 pub struct SessionWriter {
     dir: PathBuf,
@@ -339,6 +433,27 @@ impl SessionWriter {
         })
     }
 
+    /// Append one tilt state (an `a-*.dump`) with its time and the timestamp of the
+    /// last depth frame, as `record` does.
+    pub fn write_tilt(
+        &mut self,
+        state: &TiltState,
+        time_s: f64,
+        timestamp: u32,
+    ) -> Result<(), DriverError> {
+        let name = format!("a-{time_s:.6}-{timestamp}.dump");
+        let path = self.dir.join(&name);
+        std::fs::write(&path, state.to_dump()).map_err(|e| DriverError::io(&path, e))?;
+        self.append(&name)
+    }
+
+    fn append(&mut self, name: &str) -> Result<(), DriverError> {
+        self.index.push_str(name);
+        self.index.push('\n');
+        let index = self.dir.join("INDEX.txt");
+        std::fs::write(&index, &self.index).map_err(|e| DriverError::io(&index, e))
+    }
+
     /// Append one depth frame (millimetres) with its arrival time and timestamp.
     pub fn write_depth(
         &mut self,
@@ -354,10 +469,7 @@ impl SessionWriter {
         }
         let path = self.dir.join(&name);
         std::fs::write(&path, bytes).map_err(|e| DriverError::io(&path, e))?;
-        self.index.push_str(&name);
-        self.index.push('\n');
-        let index = self.dir.join("INDEX.txt");
-        std::fs::write(&index, &self.index).map_err(|e| DriverError::io(&index, e))
+        self.append(&name)
     }
 }
 
@@ -402,6 +514,49 @@ mod tests {
             );
         }
         assert_eq!(t.raw_for_mm(0), RAW_NO_DATA);
+    }
+
+    #[test]
+    fn tilt_dumps_round_trip_and_replay_by_time() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut w = SessionWriter::create(dir.path(), None).unwrap();
+        let frame = DepthFrame::from_pixels(2, 1, vec![1000, 1000]);
+        let level = TiltState {
+            accel: [0, 819, 0],
+            tilt_angle: 0,
+            tilt_status: 0,
+        };
+        let tilted = TiltState {
+            accel: [-12, 627, -526],
+            tilt_angle: -60,
+            tilt_status: 4,
+        };
+        w.write_depth(&frame, 10.0, 1).unwrap();
+        w.write_tilt(&level, 10.01, 1).unwrap();
+        w.write_depth(&frame, 10.1, 2).unwrap();
+        w.write_tilt(&tilted, 10.11, 2).unwrap();
+        let s = Session::open(dir.path()).unwrap();
+        assert_eq!(s.tilt_entries().len(), 2);
+        assert_eq!(s.tilt_at(9.0), Some(&level), "before any: the first");
+        assert_eq!(s.tilt_at(10.05), Some(&level));
+        assert_eq!(s.tilt_at(10.2), Some(&tilted));
+        let g = level.accel_mps2();
+        assert!((g[1] - GRAVITY).abs() < 1e-12 && g[0] == 0.0);
+        let name = std::fs::read_to_string(dir.path().join("INDEX.txt")).unwrap();
+        assert!(name.contains("a-10.110000-2.dump"), "{name}");
+        let bytes = std::fs::read(dir.path().join("a-10.110000-2.dump")).unwrap();
+        assert_eq!(bytes.len(), TILT_DUMP_BYTES);
+        assert_eq!(
+            TiltState::from_dump(&bytes, Path::new("x")).unwrap(),
+            tilted
+        );
+        // A dump of the wrong size names the file.
+        std::fs::write(dir.path().join("a-10.110000-2.dump"), [0u8; 5]).unwrap();
+        let e = Session::open(dir.path()).unwrap_err().to_string();
+        assert!(
+            e.contains("a-10.110000-2.dump") && e.contains("12 bytes"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 
 use libfreenect_sys as ffi;
 
-use crate::fakenect::{RawToMm, Registration};
+use crate::fakenect::{RawToMm, Registration, TiltState};
 use crate::{DepthCamera, DepthFrame, DriverError, FrameStatus};
 
 /// Kinect v1 depth image size.
@@ -206,10 +206,9 @@ impl FreenectCamera {
         })
     }
 
-    /// The accelerometer, m/s² in the Kinect's axes, read now.
-    pub fn accelerometer(&mut self) -> Option<[f64; 3]> {
-        let (mut x, mut y, mut z) = (0.0, 0.0, 0.0);
-        // Safety: live device; the state pointer is libfreenect's and read at once.
+    /// The tilt state (accelerometer counts and motor), read now.
+    pub fn read_tilt_state(&mut self) -> Option<TiltState> {
+        // Safety: live device; the state pointer is libfreenect's and copied at once.
         unsafe {
             if ffi::freenect_update_tilt_state(self.dev) < 0 {
                 return None;
@@ -218,9 +217,13 @@ impl FreenectCamera {
             if state.is_null() {
                 return None;
             }
-            ffi::freenect_get_mks_accel(state, &mut x, &mut y, &mut z);
+            let s = *state;
+            Some(TiltState {
+                accel: [s.accelerometer_x, s.accelerometer_y, s.accelerometer_z],
+                tilt_angle: s.tilt_angle,
+                tilt_status: s.tilt_status,
+            })
         }
-        Some([x, y, z])
     }
 }
 
@@ -290,6 +293,10 @@ impl DepthCamera for FreenectCamera {
         self.seq += 1;
         frame.timestamp_s = self.t0.elapsed().as_secs_f64();
         Ok(FrameStatus::Frame)
+    }
+
+    fn tilt_state(&mut self) -> Option<TiltState> {
+        self.read_tilt_state()
     }
 
     fn describe(&self) -> String {

@@ -152,6 +152,9 @@ fn get(c: &AtomicU64) -> u64 {
 struct Slot {
     frame: DepthFrame,
     arrived: Instant,
+    /// The camera's tilt state, read with this frame (auto-level only, when
+    /// [`crate::level::read_due`]).
+    tilt: Option<rover_terrain_drivers::fakenect::TiltState>,
 }
 
 enum CameraMsg {
@@ -187,6 +190,7 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
         let _ = free_tx.send(Slot {
             frame: DepthFrame::with_capacity(w, h),
             arrived: Instant::now(),
+            tilt: None,
         });
     }
     let (ready_tx, ready_rx) = bounded::<CameraMsg>(1);
@@ -203,6 +207,7 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
         },
         faults: options.faults.clone(),
         looping: config.service.loop_replay,
+        auto_level: config.mount.auto_level,
         size: (w, h),
         counters: Arc::clone(&counters),
         free_tx: free_tx.clone(),
@@ -259,11 +264,19 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
     let mut last_frame = Instant::now();
     let mut next_unknown = last_frame + timeout;
     let mut stalled = false;
+    let mut leveler = config.mount.auto_level.then(crate::level::Leveler::new);
     let reason = loop {
         let wait = next_unknown.saturating_duration_since(Instant::now());
         select! {
             recv(ready_rx) -> msg => match msg {
                 Ok(CameraMsg::Frame(slot)) => {
+                    if let Some(a) = slot.tilt.zip(leveler.as_mut()).and_then(|(t, l)| l.update(&t)) {
+                        // Rare (the attitude moved by more than 0.5°): rebuilds tables.
+                        match pipeline.set_attitude(a) {
+                            Ok(()) => log::info!("auto-level: pitch {:.2}°, roll {:.2}°", a.pitch_deg, a.roll_deg),
+                            Err(e) => log::warn!("auto-level ignored: {e}"),
+                        }
+                    }
                     let t0 = Instant::now();
                     let queued = t0 - slot.arrived;
                     let outcome = pipeline.process(&slot.frame).map(|v| wire::to_wire(v, 0.0));
@@ -409,6 +422,7 @@ struct CameraThread {
     camera_options: CameraOptions,
     faults: Faults,
     looping: bool,
+    auto_level: bool,
     size: (usize, usize),
     counters: Arc<Counters>,
     free_tx: Sender<Slot>,
@@ -466,6 +480,12 @@ impl CameraThread {
             };
             let result = camera.next_frame(&mut slot.frame);
             slot.arrived = Instant::now();
+            let due = crate::level::read_due(get(&self.counters.frames_in));
+            slot.tilt = if self.auto_level && due && result.is_ok() {
+                camera.tilt_state()
+            } else {
+                None
+            };
             match result {
                 Ok(FrameStatus::Frame) => {
                     bump(&self.counters.frames_in);
