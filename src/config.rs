@@ -262,6 +262,16 @@ impl Config {
         Self::from_toml(&text, &path.display().to_string())
     }
 
+    /// What a live camera is asked for: `[camera]` width, height, fps, depth scale.
+    pub fn camera_options(&self) -> rover_terrain_drivers::CameraOptions {
+        rover_terrain_drivers::CameraOptions {
+            width: self.camera.width,
+            height: self.camera.height,
+            fps: self.camera.fps,
+            depth_scale_mm: self.camera.depth_scale_mm as f32,
+        }
+    }
+
     /// Whether the camera uses pinhole intrinsics rather than the FOV model.
     pub fn pinhole(&self) -> Option<(f64, f64, f64, f64)> {
         let c = &self.camera;

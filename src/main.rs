@@ -566,6 +566,7 @@ fn for_each_verdict(
     mut on_verdict: impl FnMut(&Verdict, Option<&Path>, std::time::Instant) -> anyhow::Result<()>,
 ) -> anyhow::Result<bool> {
     let (w, h) = (config.camera.width as usize, config.camera.height as usize);
+    let camera_options = config.camera_options();
     let mut leveler = config
         .mount
         .auto_level
@@ -575,7 +576,7 @@ fn for_each_verdict(
     let mut failed = false;
     let mut index: u64 = 0;
     for spec in sources {
-        let mut camera = match rover_terrain_drivers::open(spec) {
+        let mut camera = match rover_terrain_drivers::open_with(spec, &camera_options) {
             Ok(c) => c,
             Err(e) => {
                 eprintln!("rover-terrain: {e}");

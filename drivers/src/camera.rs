@@ -114,8 +114,11 @@ pub fn list_cameras() -> Vec<String> {
         out.push("v4l: no /dev/video* devices".into());
     }
     for p in video {
+        #[cfg(feature = "v4l")]
+        out.push(crate::v4l::describe_device(&p));
+        #[cfg(not(feature = "v4l"))]
         out.push(format!(
-            "v4l:{}  (the V4L2 backend is not built yet: formats not listed)",
+            "v4l:{}  (formats not listed: rebuild with --features v4l)",
             p.display()
         ));
     }

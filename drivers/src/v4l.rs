@@ -106,6 +106,59 @@ pub fn convert(buf: &[u8], layout: Layout, out: &mut [u16]) -> Result<(), String
     Ok(())
 }
 
+/// One line for `rover-terrain cameras`: the device's card name and the formats it
+/// offers, the depth ones (Z16/Y16) marked; or why it cannot be read.
+pub fn describe_device(path: &Path) -> String {
+    let dev = match Device::with_path(path) {
+        Ok(d) => d,
+        Err(e) => return format!("v4l:{}  cannot open ({e})", path.display()),
+    };
+    let card = dev
+        .query_caps()
+        .map_or_else(|_| "?".to_string(), |c| c.card);
+    let formats = match dev.enum_formats() {
+        Ok(f) => f,
+        Err(e) => return format!("v4l:{}  {card}: cannot list formats ({e})", path.display()),
+    };
+    let mut listed = Vec::new();
+    let mut depth = false;
+    for f in &formats {
+        let code = String::from_utf8_lossy(&f.fourcc.repr).into_owned();
+        let is_depth = DepthFormat::from_fourcc(f.fourcc.repr).is_some();
+        depth |= is_depth;
+        let sizes: Vec<String> = dev
+            .enum_framesizes(f.fourcc)
+            .unwrap_or_default()
+            .into_iter()
+            .flat_map(|s| s.size.to_discrete())
+            .map(|d| format!("{}x{}", d.width, d.height))
+            .collect();
+        listed.push(format!(
+            "{code}{}{}",
+            if is_depth { " (depth)" } else { "" },
+            if sizes.is_empty() {
+                String::new()
+            } else {
+                format!(" {}", sizes.join(","))
+            }
+        ));
+    }
+    format!(
+        "v4l:{}  {card}: {}{}",
+        path.display(),
+        if listed.is_empty() {
+            "no formats".to_string()
+        } else {
+            listed.join("; ")
+        },
+        if depth {
+            ""
+        } else {
+            " (no depth stream: not usable)"
+        }
+    )
+}
+
 /// A V4L2 depth camera.
 pub struct V4lCamera {
     path: PathBuf,
@@ -240,6 +293,17 @@ impl DepthCamera for V4lCamera {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn describing_a_missing_or_non_video_device_says_why() {
+        let d = describe_device(Path::new("/dev/video-none"));
+        assert!(
+            d.starts_with("v4l:/dev/video-none") && d.contains("cannot open"),
+            "{d}"
+        );
+        let d = describe_device(Path::new("/dev/null"));
+        assert!(d.contains("cannot list formats"), "{d}");
+    }
 
     fn z16(rows: &[&[u16]], pad: usize) -> (Vec<u8>, usize) {
         let stride = rows[0].len() * 2 + pad;

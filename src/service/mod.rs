@@ -199,12 +199,7 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
 
     let camera = CameraThread {
         spec: options.camera.clone(),
-        camera_options: CameraOptions {
-            width: config.camera.width,
-            height: config.camera.height,
-            fps: config.camera.fps,
-            depth_scale_mm: config.camera.depth_scale_mm as f32,
-        },
+        camera_options: config.camera_options(),
         faults: options.faults.clone(),
         looping: config.service.loop_replay,
         auto_level: config.mount.auto_level,
