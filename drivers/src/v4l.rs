@@ -113,9 +113,10 @@ pub fn describe_device(path: &Path) -> String {
         Ok(d) => d,
         Err(e) => return format!("v4l:{}  cannot open ({e})", path.display()),
     };
-    let card = dev
-        .query_caps()
-        .map_or_else(|_| "?".to_string(), |c| c.card);
+    let card = match dev.query_caps() {
+        Ok(c) => c.card,
+        Err(e) => return format!("v4l:{}  not a V4L2 device ({e})", path.display()),
+    };
     let formats = match dev.enum_formats() {
         Ok(f) => f,
         Err(e) => return format!("v4l:{}  {card}: cannot list formats ({e})", path.display()),
@@ -302,7 +303,7 @@ mod tests {
             "{d}"
         );
         let d = describe_device(Path::new("/dev/null"));
-        assert!(d.contains("cannot list formats"), "{d}");
+        assert!(d.contains("not a V4L2 device"), "{d}");
     }
 
     fn z16(rows: &[&[u16]], pad: usize) -> (Vec<u8>, usize) {
