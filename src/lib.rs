@@ -13,6 +13,7 @@ pub mod bench;
 pub mod config;
 mod error;
 pub mod grid;
+pub mod inspect;
 pub mod level;
 pub mod link;
 pub mod pipeline;

@@ -167,6 +167,30 @@ enum Command {
         #[arg(long)]
         seconds: Option<f64>,
     },
+    /// Write pictures of analysed frames for people: depth.png (false-coloured range),
+    /// topdown.png (the corridor from above with tracks, hazards, toe line and verdict),
+    /// side.png (height profiles), and the voxels as cloud.pcd (PCL) and cloud.ply.
+    Inspect {
+        /// Config file (TOML).
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Output directory; with several frames, one subdirectory per frame written
+        /// (frame-000000, ...).
+        #[arg(long)]
+        out: PathBuf,
+        /// With a sequence or session: one set every N frames.
+        #[arg(long, default_value_t = 1)]
+        every: u64,
+        /// A camera instead of INPUT: freenect[:INDEX], v4l:PATH or fake:PATH.
+        #[arg(long)]
+        camera: Option<CameraSpec>,
+        /// Stop after this many frames.
+        #[arg(long)]
+        frames: Option<u64>,
+        /// A depth image, a directory of them, or a fakenect session.
+        #[arg(required_unless_present = "camera")]
+        input: Option<PathBuf>,
+    },
     /// List the depth cameras attached.
     Cameras,
     /// Render the fixture suite's frames and expectation files from the scene catalogue.
@@ -399,6 +423,11 @@ fn run(cli: Cli, service_config: Option<anyhow::Result<Config>>) -> anyhow::Resu
                     .with_context(|| format!("creating {}", parent.display()))?;
             }
             std::fs::write(&out, &report).with_context(|| format!("writing {}", out.display()))?;
+            let plots_dir = out
+                .parent()
+                .filter(|p| !p.as_os_str().is_empty())
+                .unwrap_or(Path::new("."));
+            validate::write_plots(&results, plots_dir)?;
             let failed: Vec<_> = results.iter().filter(|r| !r.passed()).collect();
             for r in &failed {
                 eprintln!("FAIL {}: {}", r.name, r.failures.join("; "));
@@ -421,6 +450,24 @@ fn run(cli: Cli, service_config: Option<anyhow::Result<Config>>) -> anyhow::Resu
             frames,
             seconds,
         } => record(&camera, &out, frames, seconds),
+        Command::Inspect {
+            config,
+            out,
+            every,
+            camera,
+            frames,
+            input,
+        } => {
+            anyhow::ensure!(every > 0, "--every must be at least 1");
+            let config = load_config(config.as_deref())?;
+            let spec = match (camera, input) {
+                (Some(_), Some(_)) => anyhow::bail!("give either --camera or INPUT, not both"),
+                (Some(c), None) => c,
+                (None, Some(p)) => CameraSpec::Fake(p),
+                (None, None) => anyhow::bail!("give INPUT or --camera"),
+            };
+            inspect(config, &spec, &out, every, frames)
+        }
         Command::Cameras => {
             for line in rover_terrain_drivers::list_cameras() {
                 println!("{line}");
@@ -433,6 +480,78 @@ fn run(cli: Cli, service_config: Option<anyhow::Result<Config>>) -> anyhow::Resu
             Ok(ExitCode::SUCCESS)
         }
     }
+}
+
+/// `inspect`: a picture set for every `every`-th frame of `spec`.
+fn inspect(
+    config: Config,
+    spec: &CameraSpec,
+    out: &Path,
+    every: u64,
+    limit: Option<u64>,
+) -> anyhow::Result<ExitCode> {
+    use rover_terrain::inspect::{write_frame_set, Scene};
+    let single = match spec {
+        CameraSpec::Fake(p) => FakeCamera::open(p)?.len() == 1,
+        _ => false,
+    };
+    let mut camera = rover_terrain_drivers::open_with(spec, &config.camera_options())?;
+    camera.start()?;
+    let mut pipeline = Pipeline::new(config)?;
+    let mut frame = DepthFrame::default();
+    let (mut n, mut written, mut failed) = (0u64, 0u64, false);
+    while limit.is_none_or(|l| n < l) {
+        match camera.next_frame(&mut frame) {
+            Ok(FrameStatus::Frame) => {}
+            Ok(FrameStatus::EndOfStream) => break,
+            Err(e @ rover_terrain_drivers::DriverError::Malformed { .. }) => {
+                eprintln!("rover-terrain: {e}");
+                failed = true;
+                n += 1;
+                continue;
+            }
+            Err(e) => return Err(e.into()),
+        }
+        frame.seq = n;
+        n += 1;
+        if (n - 1) % every != 0 {
+            continue;
+        }
+        let verdict = match pipeline.process(&frame) {
+            Ok(v) => v.clone(),
+            Err(e) => {
+                eprintln!("rover-terrain: {e}");
+                failed = true;
+                continue;
+            }
+        };
+        let dir = if single {
+            out.to_path_buf()
+        } else {
+            out.join(format!("frame-{:06}", frame.seq))
+        };
+        let set = write_frame_set(&frame, &Scene::of(&pipeline, &verdict), &dir)?;
+        let files: Vec<String> = [&set.depth, &set.topdown, &set.side, &set.pcd, &set.ply]
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect();
+        println!(
+            "{}",
+            serde_json::json!({
+                "frame": frame.seq,
+                "verdict": verdict.decision,
+                "dir": dir.display().to_string(),
+                "files": files,
+            })
+        );
+        written += 1;
+    }
+    anyhow::ensure!(written > 0 || failed, "no frame to inspect");
+    Ok(if failed {
+        ExitCode::from(EXIT_FAILURE)
+    } else {
+        ExitCode::SUCCESS
+    })
 }
 
 /// `AT:COUNT` for `--inject-stall`.

@@ -46,6 +46,23 @@ pub const NOISY: Tolerance = Tolerance {
 /// The config of the fixtures that need the camera pitched 40° down.
 const PITCH40_CONFIG: &str = "# The default rover and Kinect, with the camera pitched 40° down so that\n# it sees ground from 0.43 m (the paper's left-side toe is at 0.474 m).\n[mount]\npitch_deg = 40.0\n";
 
+/// File name of the error-against-distance plot, beside the report.
+pub const ERROR_PLOT: &str = "validation-error.png";
+/// File name of the workcase confusion matrix, beside the report.
+pub const CONFUSION_PLOT: &str = "validation-confusion.png";
+
+/// Write the plots of `results` into `dir`: [`ERROR_PLOT`] and [`CONFUSION_PLOT`].
+pub fn write_plots(results: &[CaseResult], dir: &Path) -> Result<(), Error> {
+    for (name, canvas) in [
+        (ERROR_PLOT, crate::inspect::plots::error_plot(results)),
+        (CONFUSION_PLOT, crate::inspect::plots::confusion(results)),
+    ] {
+        let path = dir.join(name);
+        std::fs::write(&path, canvas.png()).map_err(|e| Error::Io { path, source: e })?;
+    }
+    Ok(())
+}
+
 /// Suffix of fixture files.
 pub const FIXTURE_SUFFIX: &str = ".fixture.toml";
 
@@ -405,6 +422,13 @@ pub fn report(results: &[CaseResult]) -> String {
             }
         );
     }
+    let _ = writeln!(s, "\n## Plots\n");
+    let _ = writeln!(
+        s,
+        "Written beside this report by `validate`.\n\n\
+         ![Error against the feature's distance, clean and noisy fixtures]({ERROR_PLOT})\n\n\
+         ![Confusion matrix of workcases, expected against analysed]({CONFUSION_PLOT})"
+    );
     let _ = writeln!(s, "\n## Summary\n");
     for (label, noisy) in [("clean", false), ("Kinect noise", true)] {
         let set: Vec<&CaseResult> = results

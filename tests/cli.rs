@@ -366,6 +366,19 @@ fn validate_writes_the_report() {
         "{text}"
     );
     assert!(!text.contains("FAIL"));
+    // The plots beside the report, linked from it, of their documented sizes.
+    use rover_terrain::inspect::plots::{CONFUSION_SIZE, ERROR_SIZE};
+    use rover_terrain::validate::{CONFUSION_PLOT, ERROR_PLOT};
+    for (name, size) in [(ERROR_PLOT, ERROR_SIZE), (CONFUSION_PLOT, CONFUSION_SIZE)] {
+        assert!(text.contains(&format!("]({name})")), "linked: {name}");
+        let file = std::fs::File::open(dir.path().join(name)).unwrap();
+        let info = png::Decoder::new(std::io::BufReader::new(file))
+            .read_info()
+            .unwrap()
+            .info()
+            .clone();
+        assert_eq!((info.width, info.height), size, "{name}");
+    }
     let o = run(&[
         "validate",
         dir.path().to_str().unwrap(),

@@ -1,0 +1,333 @@
+//! `topdown.png`: the corridor from above, forward up, the rover's left on the left.
+
+use super::canvas::{rgb, turbo, Canvas, BODY, LARGE, SMALL};
+use super::Scene;
+use crate::grid::GridSpec;
+use crate::verdict::{Decision, HazardKind, Side};
+
+/// Left margin, pixels.
+const LEFT: i32 = 56;
+/// Top margin, pixels.
+const TOP: i32 = 40;
+/// Space under the map (rover mark, scale bar), pixels.
+const BOTTOM: u32 = 70;
+/// Gap and text panel to the right of the map, pixels.
+const PANEL: u32 = 360;
+/// Heights coloured, metres: this range spans the colour map.
+pub const Z_RANGE_M: (f64, f64) = (-0.4, 0.6);
+
+/// Pixels per grid cell: the corridor is drawn about 720 pixels long.
+fn cell_px(nx: usize) -> u32 {
+    (720 / nx.max(1) as u32).clamp(4, 16)
+}
+
+/// The picture's size for a grid of `nx` × `ny` cells, pixels (width, height).
+/// The default configuration (60 × 28 cells) gives 752 × 830.
+pub fn size(nx: usize, ny: usize) -> (u32, u32) {
+    let cp = cell_px(nx);
+    (
+        LEFT as u32 + ny as u32 * cp + PANEL,
+        (TOP as u32 + nx as u32 * cp + BOTTOM).max(560),
+    )
+}
+
+/// Where the rover-frame point (x forward, y left, metres) is drawn, pixels.
+pub fn to_pixel(spec: &GridSpec, x: f32, y: f32) -> (i32, i32) {
+    let cp = cell_px(spec.nx) as f32;
+    let (v, half_w, len) = (spec.voxel_m, -spec.origin[1], spec.nx as f32 * spec.voxel_m);
+    (
+        LEFT + ((half_w - y) / v * cp).round() as i32,
+        TOP + ((len - x) / v * cp).round() as i32,
+    )
+}
+
+/// Draw the top-down map of `scene`.
+pub fn draw(scene: &Scene<'_>) -> Canvas {
+    let s = scene.spec;
+    let cp = cell_px(s.nx);
+    let (w, h) = size(s.nx, s.ny);
+    let mut c = Canvas::new(w, h, rgb(250, 250, 250));
+    let v = s.voxel_m;
+    let len = s.nx as f32 * v;
+    // Rover frame → pixels.
+    let px = |y: f32| to_pixel(s, 0.0, y).0;
+    let py = |x: f32| to_pixel(s, x, 0.0).1;
+    let (map_w, map_h) = (s.ny as u32 * cp, s.nx as u32 * cp);
+
+    // Cells.
+    for ix in 0..s.nx {
+        for iy in 0..s.ny {
+            let i = s.cell(ix, iy);
+            let (x0, y0) = (px(s.y_centre(iy) + v / 2.0), py(s.x_centre(ix) + v / 2.0));
+            if scene.seen(i) {
+                let z = f64::from(scene.cells[i].z);
+                let t = (z - Z_RANGE_M.0) / (Z_RANGE_M.1 - Z_RANGE_M.0);
+                c.fill(x0, y0, cp, cp, turbo(t));
+            } else if scene.expected[i] {
+                // Should be seen, is not: hatched.
+                c.fill(x0, y0, cp, cp, rgb(215, 215, 215));
+                for k in 0..cp as i32 {
+                    for j in 0..cp as i32 {
+                        if (k + j + x0 + y0) % 5 == 0 {
+                            c.set(x0 + k, y0 + j, rgb(110, 110, 110));
+                        }
+                    }
+                }
+            } else {
+                c.fill(x0, y0, cp, cp, rgb(70, 70, 70));
+            }
+        }
+    }
+    // Distance grid every 0.5 m with labels.
+    let mut d = 0.0f32;
+    while d <= len + 1e-3 {
+        let y = py(d);
+        c.line((LEFT, y), (LEFT + map_w as i32, y), rgb(255, 255, 255), 1);
+        c.text(&format!("{d:.1} m"), 4, y - 5, SMALL, rgb(40, 40, 40));
+        d += 0.5;
+    }
+    // Wheel tracks (black) and the belly band (white).
+    let r = &scene.config.rover;
+    let (b, o) = (r.belly_half_width_m as f32, r.track_outer_m as f32);
+    for (lo, hi) in [(b, o), (-o, -b)] {
+        let (xa, xb) = (px(hi), px(lo));
+        c.outline(xa, TOP, (xb - xa) as u32, map_h, rgb(0, 0, 0), 2);
+    }
+    let (xa, xb) = (px(b), px(-b));
+    c.outline(xa, TOP, (xb - xa) as u32, map_h, rgb(255, 255, 255), 1);
+    for (label, y) in [
+        ("left track", (b + o) / 2.0),
+        ("belly", 0.0),
+        ("right track", -(b + o) / 2.0),
+    ] {
+        let x = px(y) - (label.len() as i32 * 6) / 2;
+        c.text(label, x, TOP - 14, SMALL, rgb(40, 40, 40));
+    }
+
+    // The toe line.
+    if let Some(((lo, hi), toe)) = scene.toe_line() {
+        let (ya, yb) = (hi, lo);
+        c.line(
+            (px(ya), py(toe(ya))),
+            (px(yb), py(toe(yb))),
+            rgb(200, 0, 200),
+            3,
+        );
+        c.text("toe", px(ya) + 4, py(toe(ya)) - 14, BODY, rgb(200, 0, 200));
+    }
+    // Hazards where they are: a bar across their side and a marked dot.
+    for hz in &scene.verdict.hazards {
+        let (lo, hi) = match hz.side {
+            Side::Left => (b, o),
+            Side::Right => (-o, -b),
+            Side::Centre if hz.kind == HazardKind::Unknown => (-o, o),
+            Side::Centre => (-b, b),
+        };
+        let y = py(hz.distance_m);
+        c.line((px(hi), y), (px(lo), y), rgb(230, 30, 30), 4);
+        let cx = px(scene.side_centre(hz.side));
+        c.fill(cx - 6, y - 6, 13, 13, rgb(230, 30, 30));
+        c.outline(cx - 6, y - 6, 13, 13, rgb(255, 255, 255), 1);
+        let name = hazard_name(hz.kind);
+        c.fill(
+            cx + 9,
+            y - 8,
+            name.len() as u32 * 7 + 4,
+            15,
+            rgb(255, 255, 255),
+        );
+        c.text(name, cx + 11, y - 7, BODY, rgb(200, 0, 0));
+    }
+    // The rover, and a 1 m scale bar.
+    let base = TOP + map_h as i32;
+    let mid = px(0.0);
+    c.text("^ rover (x = 0)", mid - 45, base + 6, BODY, rgb(0, 0, 0));
+    let bar = (1.0 / v * cp as f32).round() as i32;
+    let sy = base + 40;
+    c.line((LEFT, sy), (LEFT + bar, sy), rgb(0, 0, 0), 3);
+    c.line((LEFT, sy - 6), (LEFT, sy + 6), rgb(0, 0, 0), 2);
+    c.line((LEFT + bar, sy - 6), (LEFT + bar, sy + 6), rgb(0, 0, 0), 2);
+    c.text("1 m", LEFT + bar + 8, sy - 6, BODY, rgb(0, 0, 0));
+
+    panel(&mut c, scene, LEFT + map_w as i32 + 24);
+    c
+}
+
+fn hazard_name(k: HazardKind) -> &'static str {
+    match k {
+        HazardKind::Slope => "SLOPE",
+        HazardKind::Step => "STEP",
+        HazardKind::Belly => "UNDER BELLY",
+        HazardKind::DropOff => "DROP-OFF",
+        HazardKind::Unknown => "UNKNOWN",
+    }
+}
+
+/// What each workcase means, in words.
+pub fn workcase_name(w: u8) -> &'static str {
+    match w {
+        1 => "flat",
+        2 => "uphill, straight",
+        3 => "uphill, left side only",
+        4 => "uphill, diagonal, left",
+        5 => "uphill, right side only",
+        6 => "uphill, diagonal, right",
+        7 => "uphill, diagonal, full width",
+        8 => "downhill, straight",
+        9 => "downhill, left side",
+        10 => "downhill, right side",
+        _ => "?",
+    }
+}
+
+/// The verdict and the legend, to the right of the map.
+fn panel(c: &mut Canvas, scene: &Scene<'_>, x: i32) {
+    let v = scene.verdict;
+    let (word, colour) = match v.decision {
+        Decision::Go => ("GO", rgb(0, 150, 0)),
+        Decision::Stop => ("STOP", rgb(210, 0, 0)),
+        Decision::Unknown => ("UNKNOWN (stop)", rgb(220, 120, 0)),
+    };
+    let mut y = TOP;
+    c.text(&format!("frame {}", v.frame), x, y, BODY, rgb(60, 60, 60));
+    y += 20;
+    c.fill(x - 4, y - 4, word.len() as u32 * 10 + 8, 28, colour);
+    c.text(word, x, y, LARGE, rgb(255, 255, 255));
+    y += 36;
+    let line = |c: &mut Canvas, s: &str, y: &mut i32| {
+        c.text(s, x, *y, BODY, rgb(0, 0, 0));
+        *y += 17;
+    };
+    match v.feature {
+        Some(f) if v.decision == Decision::Go => {
+            line(
+                c,
+                &format!("workcase {}: {}", f.workcase, workcase_name(f.workcase)),
+                &mut y,
+            );
+            if let Some(d) = f.distance_m {
+                line(c, &format!("toe distance  {d:.2} m"), &mut y);
+            }
+            if let Some(g) = f.gradient_deg {
+                line(c, &format!("gradient      {g:.1}°"), &mut y);
+            }
+            if let Some(a) = f.alpha_deg {
+                line(c, &format!("alpha         {a:.1}°"), &mut y);
+            }
+        }
+        _ => {}
+    }
+    line(
+        c,
+        &format!("seen          {:.0} %", v.seen_fraction * 100.0),
+        &mut y,
+    );
+    if v.hazards.is_empty() {
+        line(c, "hazards: none", &mut y);
+    } else {
+        line(c, "hazards (nearest first):", &mut y);
+        for h in &v.hazards {
+            line(
+                c,
+                &format!(
+                    "  {} {} at {:.2} m",
+                    hazard_name(h.kind).to_lowercase(),
+                    format!("{:?}", h.side).to_lowercase(),
+                    h.distance_m
+                ),
+                &mut y,
+            );
+        }
+    }
+    // What the wheels and the belly meet: the highest seen point of each band.
+    let highest = |side: Side| {
+        (0..scene.spec.nx)
+            .filter_map(|ix| super::side::band_height(scene, side, ix))
+            .reduce(f32::max)
+            .map_or("-".to_string(), |z| format!("{z:.2}"))
+    };
+    line(
+        c,
+        &format!(
+            "highest m: left {} belly {} right {}",
+            highest(Side::Left),
+            highest(Side::Centre),
+            highest(Side::Right)
+        ),
+        &mut y,
+    );
+    let m = v.mount;
+    line(
+        c,
+        &format!(
+            "camera pitch {:.1}° roll {:.1}° ({})",
+            m.pitch_deg,
+            m.roll_deg,
+            if m.from_accelerometer {
+                "accel."
+            } else {
+                "config"
+            }
+        ),
+        &mut y,
+    );
+    let r = &scene.config.rover;
+    line(
+        c,
+        &format!(
+            "limits: step {:.2} m, belly {:.2} m, slope {:.0}°",
+            r.wheel_radius_m, r.belly_clearance_m, r.max_slope_deg
+        ),
+        &mut y,
+    );
+
+    // Legend.
+    y += 16;
+    c.text("ground height", x, y, BODY, rgb(0, 0, 0));
+    y += 18;
+    let bar_w = 200;
+    for k in 0..bar_w {
+        let t = f64::from(k) / f64::from(bar_w - 1);
+        c.fill(x + k, y, 1, 14, turbo(t));
+    }
+    y += 16;
+    c.text(&format!("{:.1} m", Z_RANGE_M.0), x, y, SMALL, rgb(0, 0, 0));
+    c.text(
+        "0",
+        x + (bar_w as f64 * 0.4) as i32 - 2,
+        y,
+        SMALL,
+        rgb(0, 0, 0),
+    );
+    c.text(
+        &format!("+{:.1} m", Z_RANGE_M.1),
+        x + bar_w - 30,
+        y,
+        SMALL,
+        rgb(0, 0, 0),
+    );
+    y += 20;
+    let swatch = |c: &mut Canvas, y: i32, fill: [u8; 3], hatch: bool, label: &str| {
+        c.fill(x, y, 14, 14, rgb(fill[0], fill[1], fill[2]));
+        if hatch {
+            for k in 0..14 {
+                for j in 0..14 {
+                    if (k + j) % 5 == 0 {
+                        c.set(x + k, y + j, rgb(110, 110, 110));
+                    }
+                }
+            }
+        }
+        c.text(label, x + 20, y + 1, BODY, rgb(0, 0, 0));
+    };
+    swatch(c, y, [215, 215, 215], true, "should be seen, not seen");
+    y += 20;
+    swatch(c, y, [70, 70, 70], false, "out of the camera's view");
+    y += 20;
+    swatch(c, y, [230, 30, 30], false, "hazard (near edge)");
+    y += 20;
+    swatch(c, y, [200, 0, 200], false, "toe line of the slope");
+    y += 20;
+    c.outline(x, y, 14, 14, rgb(0, 0, 0), 2);
+    c.text("wheel tracks", x + 20, y + 1, BODY, rgb(0, 0, 0));
+}
