@@ -631,6 +631,7 @@ fn record(
     let mut cam = rover_terrain_drivers::open(camera)?;
     let mut writer = SessionWriter::create(out, Some(registration))?;
     let mut frame = DepthFrame::default();
+    let mut colour = rover_terrain_drivers::ColourFrame::default();
     let start = std::time::Instant::now();
     let wall0 = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
@@ -650,6 +651,10 @@ fn record(
             _ => wall0 + start.elapsed().as_secs_f64(),
         };
         writer.write_depth(&frame, t, n as u32)?;
+        // The colour frame that came with it, if the camera has colour.
+        if cam.next_colour(&mut colour)? {
+            writer.write_colour(&colour, t, n as u32)?;
+        }
         // The tilt state with each frame, as libfreenect's recorder snapshots it.
         if let Some(tilt) = cam.tilt_state() {
             writer.write_tilt(&tilt, t, n as u32)?;

@@ -434,8 +434,8 @@ fn record_then_replay_is_byte_identical() {
     names.sort();
     assert_eq!(
         names.len(),
-        8,
-        "INDEX.txt, device.json, 3 frames, 3 tilt states"
+        11,
+        "INDEX.txt, device.json, 3 depth, 3 colour, 3 tilt states"
     );
     for n in names {
         assert_eq!(

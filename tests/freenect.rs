@@ -109,3 +109,45 @@ fn the_tilt_state_comes_through_the_real_ffi_for_auto_level() {
     }
     assert_eq!(text.lines().count(), 3);
 }
+
+#[test]
+fn colour_comes_through_the_real_ffi_and_record_keeps_it() {
+    // Recording libfreenect's replay of the session writes its colour frames back
+    // byte for byte (the RGB stream through our video callback).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rec");
+    let s = session();
+    let o = run(
+        &[
+            "record",
+            "--camera",
+            "freenect",
+            "--frames",
+            "3",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[("LD_LIBRARY_PATH", FAKENECT_LIB), ("FAKENECT_PATH", &s)],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let ppm = |dir: &Path| -> Vec<Vec<u8>> {
+        let mut names: Vec<_> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("r-"))
+            .collect();
+        names.sort();
+        names.iter().map(|p| std::fs::read(p).unwrap()).collect()
+    };
+    let (ours, original) = (ppm(&out), ppm(Path::new(&s)));
+    assert_eq!(original.len(), 3);
+    assert!(!ours.is_empty(), "colour frames were recorded");
+    // fakenect delivers a colour frame when it reaches it in the index: each one we
+    // recorded is one of the session's.
+    for frame in &ours {
+        assert!(
+            original.contains(frame),
+            "a recorded colour frame is the session's"
+        );
+    }
+}

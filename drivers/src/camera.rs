@@ -33,6 +33,14 @@ pub trait DepthCamera {
     fn last_source(&self) -> Option<&std::path::Path> {
         None
     }
+    /// The colour image that goes with the last depth frame, for cameras that have
+    /// colour: `Ok(true)` when `frame` now holds it, `Ok(false)` when the camera has no
+    /// colour (or none has arrived yet). Never blocks; the caller owns the buffer, as
+    /// for depth.
+    fn next_colour(&mut self, frame: &mut crate::ColourFrame) -> Result<bool, DriverError> {
+        let _ = frame;
+        Ok(false)
+    }
     /// The camera's tilt state (accelerometer) now, or as recorded with the last
     /// frame; `None` for cameras without one. May block briefly (a USB control
     /// transfer on a Kinect): call it about once a second, not every frame.

@@ -328,6 +328,20 @@ impl DepthCamera for FakeCamera {
         self.last_path()
     }
 
+    fn next_colour(&mut self, frame: &mut crate::ColourFrame) -> Result<bool, DriverError> {
+        let (Source::Session(s), Some(i)) = (&self.source, self.last) else {
+            return Ok(false);
+        };
+        match s.colour_at(s.depth_entries()[i].time_s) {
+            Some(entry) => {
+                s.read_colour(entry, &mut self.scratch, frame)?;
+                frame.seq = self.seq.saturating_sub(1);
+                Ok(true)
+            }
+            None => Ok(false),
+        }
+    }
+
     fn tilt_state(&mut self) -> Option<crate::fakenect::TiltState> {
         match &self.source {
             Source::Session(s) => {

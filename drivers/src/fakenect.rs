@@ -240,6 +240,73 @@ pub struct TiltEntry {
     pub state: TiltState,
 }
 
+/// One colour entry of a session's index.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColourEntry {
+    /// The frame file (`r-*.ppm`).
+    pub path: PathBuf,
+    /// Wall-clock time of arrival at recording, seconds.
+    pub time_s: f64,
+    /// The Kinect's own frame timestamp.
+    pub timestamp: u32,
+}
+
+/// Decode a binary PPM (`P6 W H 255`, as libfreenect's `record` writes colour) into
+/// `frame`.
+pub fn decode_ppm(
+    bytes: &[u8],
+    path: &Path,
+    frame: &mut crate::ColourFrame,
+) -> Result<(), DriverError> {
+    let bad = |what: &str| DriverError::malformed(path, what.to_string());
+    // Header: four whitespace-separated tokens, then one whitespace byte.
+    let mut tokens = Vec::with_capacity(4);
+    let mut i = 0;
+    while tokens.len() < 4 {
+        while i < bytes.len() && bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        let start = i;
+        while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        if start == i {
+            return Err(bad("truncated PPM header"));
+        }
+        tokens.push(&bytes[start..i]);
+    }
+    if tokens[0] != b"P6" {
+        return Err(bad("not a binary PPM (P6)"));
+    }
+    let num = |t: &[u8]| {
+        std::str::from_utf8(t)
+            .ok()
+            .and_then(|s| s.parse::<usize>().ok())
+    };
+    let (w, h, max) = match (num(tokens[1]), num(tokens[2]), num(tokens[3])) {
+        (Some(w), Some(h), Some(m)) => (w, h, m),
+        _ => return Err(bad("PPM header has a non-numeric size")),
+    };
+    if max != 255 {
+        return Err(bad("only 8-bit PPM (maxval 255) is supported"));
+    }
+    if w == 0 || h == 0 || w > crate::MAX_WIDTH || h > crate::MAX_HEIGHT {
+        return Err(DriverError::malformed(
+            path,
+            format!("PPM size {w}x{h} is out of range"),
+        ));
+    }
+    let data = &bytes[(i + 1).min(bytes.len())..];
+    if data.len() < w * h * 3 {
+        return Err(DriverError::malformed(
+            path,
+            format!("truncated: {} of {} pixel bytes", data.len(), w * h * 3),
+        ));
+    }
+    frame.reshape(w, h).copy_from_slice(&data[..w * h * 3]);
+    Ok(())
+}
+
 /// One depth entry of a session's index.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DepthEntry {
@@ -257,6 +324,7 @@ pub struct Session {
     dir: PathBuf,
     depth: Vec<DepthEntry>,
     tilt: Vec<TiltEntry>,
+    colour: Vec<ColourEntry>,
     registration: Option<Registration>,
     to_mm: RawToMm,
 }
@@ -274,6 +342,7 @@ impl Session {
         let text = std::fs::read_to_string(&index).map_err(|e| DriverError::io(&index, e))?;
         let mut depth = Vec::new();
         let mut tilt = Vec::new();
+        let mut colour = Vec::new();
         for (n, line) in text.lines().enumerate() {
             let name = line.trim();
             if name.is_empty() {
@@ -297,6 +366,11 @@ impl Session {
             }
             match kind {
                 'd' => depth.push(DepthEntry {
+                    path,
+                    time_s,
+                    timestamp,
+                }),
+                'r' => colour.push(ColourEntry {
                     path,
                     time_s,
                     timestamp,
@@ -330,6 +404,7 @@ impl Session {
             dir: dir.to_path_buf(),
             depth,
             tilt,
+            colour,
             registration,
             to_mm,
         })
@@ -355,6 +430,31 @@ impl Session {
     pub fn tilt_at(&self, time_s: f64) -> Option<&TiltState> {
         let after = self.tilt.partition_point(|e| e.time_s <= time_s);
         self.tilt.get(after.saturating_sub(1)).map(|e| &e.state)
+    }
+
+    /// The colour frames, in arrival order.
+    pub fn colour_entries(&self) -> &[ColourEntry] {
+        &self.colour
+    }
+
+    /// The last colour frame recorded at or before `time_s` (the first if all are
+    /// later); `None` if the session has no colour.
+    pub fn colour_at(&self, time_s: f64) -> Option<&ColourEntry> {
+        let after = self.colour.partition_point(|e| e.time_s <= time_s);
+        self.colour.get(after.saturating_sub(1))
+    }
+
+    /// Read colour frame `entry` into `frame`.
+    pub fn read_colour(
+        &self,
+        entry: &ColourEntry,
+        scratch: &mut Vec<u8>,
+        frame: &mut crate::ColourFrame,
+    ) -> Result<(), DriverError> {
+        read_file_into(&entry.path, scratch)?;
+        decode_ppm(scratch, &entry.path, frame)?;
+        frame.timestamp_s = entry.time_s;
+        Ok(())
     }
 
     /// The registration from `device.json`, if the session has one.
@@ -431,6 +531,21 @@ impl SessionWriter {
             index: String::new(),
             to_raw,
         })
+    }
+
+    /// Append one colour frame (an `r-*.ppm`, `P6 W H 255` and RGB bytes).
+    pub fn write_colour(
+        &mut self,
+        frame: &crate::ColourFrame,
+        time_s: f64,
+        timestamp: u32,
+    ) -> Result<(), DriverError> {
+        let name = format!("r-{time_s:.6}-{timestamp}.ppm");
+        let mut bytes = format!("P6 {} {} 255\n", frame.width(), frame.height()).into_bytes();
+        bytes.extend_from_slice(frame.rgb());
+        let path = self.dir.join(&name);
+        std::fs::write(&path, bytes).map_err(|e| DriverError::io(&path, e))?;
+        self.append(&name)
     }
 
     /// Append one tilt state (an `a-*.dump`) with its time and the timestamp of the
@@ -557,6 +672,37 @@ mod tests {
             e.contains("a-10.110000-2.dump") && e.contains("12 bytes"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn colour_frames_round_trip_and_bad_ones_are_named() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut w = SessionWriter::create(dir.path(), None).unwrap();
+        let depth = DepthFrame::from_pixels(2, 1, vec![1000, 1000]);
+        let mut colour = crate::ColourFrame::default();
+        colour.reshape(2, 1).copy_from_slice(&[1, 2, 3, 4, 5, 6]);
+        w.write_depth(&depth, 5.0, 1).unwrap();
+        w.write_colour(&colour, 5.01, 1).unwrap();
+        let s = Session::open(dir.path()).unwrap();
+        assert_eq!(s.colour_entries().len(), 1);
+        let e = s.colour_at(6.0).unwrap().clone();
+        let mut back = crate::ColourFrame::default();
+        s.read_colour(&e, &mut Vec::new(), &mut back).unwrap();
+        assert_eq!(
+            (back.width(), back.height(), back.rgb()),
+            (2, 1, &[1u8, 2, 3, 4, 5, 6][..])
+        );
+        let p = Path::new("r.ppm");
+        for (bytes, why) in [
+            (&b"P6 2 1 255\n\x01\x02"[..], "truncated"),
+            (&b"P5 2 1 255\n\x01\x02\x03\x04\x05\x06"[..], "P6"),
+            (&b"P6 2 1 65535\n"[..], "maxval"),
+            (&b"P6 2"[..], "header"),
+            (&b"P6 0 1 255\n"[..], "out of range"),
+        ] {
+            let e = decode_ppm(bytes, p, &mut back).unwrap_err().to_string();
+            assert!(e.contains("r.ppm") && e.contains(why), "{e}");
+        }
     }
 
     #[test]

@@ -83,3 +83,52 @@ impl DepthFrame {
         &mut self.depth_mm
     }
 }
+
+/// One colour image: row-major 8-bit RGB, 3 bytes a pixel. Like [`DepthFrame`], its
+/// buffer is allocated once and reused.
+#[derive(Debug, Clone, Default)]
+pub struct ColourFrame {
+    width: usize,
+    height: usize,
+    rgb: Vec<u8>,
+    /// Sequence number given by the source.
+    pub seq: u64,
+    /// Capture time in seconds, in the source's own clock.
+    pub timestamp_s: f64,
+}
+
+impl ColourFrame {
+    /// An empty frame whose buffer holds `width × height` pixels without allocating.
+    pub fn with_capacity(width: usize, height: usize) -> Self {
+        ColourFrame {
+            rgb: Vec::with_capacity(width.min(MAX_WIDTH) * height.min(MAX_HEIGHT) * 3),
+            ..ColourFrame::default()
+        }
+    }
+
+    /// Resize to `width × height` (all black) and return the bytes to fill. The
+    /// caller has checked the size against [`MAX_WIDTH`]/[`MAX_HEIGHT`].
+    pub fn reshape(&mut self, width: usize, height: usize) -> &mut [u8] {
+        debug_assert!(width <= MAX_WIDTH && height <= MAX_HEIGHT);
+        self.width = width;
+        self.height = height;
+        self.rgb.clear();
+        self.rgb.resize(width * height * 3, 0);
+        &mut self.rgb
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// The pixels, row-major `[r, g, b]` bytes.
+    pub fn rgb(&self) -> &[u8] {
+        &self.rgb
+    }
+}

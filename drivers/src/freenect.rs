@@ -35,6 +35,9 @@ struct Shared {
     buf: Vec<u16>,
     fresh: bool,
     timestamp: u32,
+    /// The last colour frame (RGB, 640×480×3), and whether one arrived.
+    rgb: Vec<u8>,
+    have_rgb: bool,
 }
 
 /// A Kinect v1 depth camera.
@@ -71,6 +74,21 @@ unsafe extern "C" fn on_depth(dev: *mut ffi::freenect_device, depth: *mut c_void
         }
         shared.fresh = true;
         shared.timestamp = timestamp;
+    }
+}
+
+unsafe extern "C" fn on_video(dev: *mut ffi::freenect_device, video: *mut c_void, _timestamp: u32) {
+    // Safety: as in `on_depth`: the user pointer is our `Shared`, touched only inside
+    // `freenect_process_events` called from `next_frame`; the buffer holds one RGB
+    // frame (the mode we set) valid for this call, read as bytes and copied out.
+    unsafe {
+        let shared = &mut *(ffi::freenect_get_user(dev) as *mut Shared);
+        if video.is_null() {
+            return;
+        }
+        let src = std::slice::from_raw_parts(video as *const u8, shared.rgb.len());
+        shared.rgb.copy_from_slice(src);
+        shared.have_rgb = true;
     }
 }
 
@@ -178,6 +196,8 @@ impl FreenectCamera {
             buf: vec![0; W * H],
             fresh: false,
             timestamp: 0,
+            rgb: vec![0; W * H * 3],
+            have_rgb: false,
         })));
         // Safety: live device; the mode comes from libfreenect's own table; the user
         // pointer is the boxed `Shared`, which lives as long as the camera.
@@ -193,6 +213,16 @@ impl FreenectCamera {
             }
             ffi::freenect_set_user(dev, shared.as_ptr() as *mut c_void);
             ffi::freenect_set_depth_callback(dev, Some(on_depth));
+            // Colour is optional: without it, depth still works.
+            let video = ffi::freenect_find_video_mode(
+                ffi::FREENECT_RESOLUTION_MEDIUM,
+                ffi::FREENECT_VIDEO_RGB,
+            );
+            if video.is_valid != 0 && ffi::freenect_set_video_mode(dev, video) >= 0 {
+                ffi::freenect_set_video_callback(dev, Some(on_video));
+            } else {
+                log::warn!("Kinect {index}: no RGB video mode; depth only");
+            }
         }
         Ok(FreenectCamera {
             ctx,
@@ -237,6 +267,14 @@ impl DepthCamera for FreenectCamera {
                     self.index
                 )));
             }
+            // Safety: as above; a Kinect (or a session) without colour just never
+            // calls the video callback.
+            if unsafe { ffi::freenect_start_video(self.dev) } < 0 {
+                log::warn!(
+                    "Kinect {}: colour stream did not start; depth only",
+                    self.index
+                );
+            }
             self.started = true;
         }
         Ok(())
@@ -245,7 +283,10 @@ impl DepthCamera for FreenectCamera {
     fn stop(&mut self) -> Result<(), DriverError> {
         if self.started {
             // Safety: live, started device.
-            unsafe { ffi::freenect_stop_depth(self.dev) };
+            unsafe {
+                ffi::freenect_stop_video(self.dev);
+                ffi::freenect_stop_depth(self.dev);
+            }
             self.started = false;
         }
         Ok(())
@@ -293,6 +334,19 @@ impl DepthCamera for FreenectCamera {
         self.seq += 1;
         frame.timestamp_s = self.t0.elapsed().as_secs_f64();
         Ok(FrameStatus::Frame)
+    }
+
+    fn next_colour(&mut self, frame: &mut crate::ColourFrame) -> Result<bool, DriverError> {
+        // Safety: our live pointer; the callback writes only inside
+        // `freenect_process_events`, which is not running now.
+        let src: &Shared = unsafe { &*self.shared.as_ptr() };
+        if !src.have_rgb {
+            return Ok(false);
+        }
+        frame.reshape(W, H).copy_from_slice(&src.rgb);
+        frame.seq = self.seq.saturating_sub(1);
+        frame.timestamp_s = self.t0.elapsed().as_secs_f64();
+        Ok(true)
     }
 
     fn tilt_state(&mut self) -> Option<TiltState> {

@@ -23,4 +23,4 @@ pub use camera::{
 };
 pub use error::DriverError;
 pub use fake::{FakeCamera, Faults, Pace};
-pub use frame::{DepthFrame, MAX_HEIGHT, MAX_WIDTH};
+pub use frame::{ColourFrame, DepthFrame, MAX_HEIGHT, MAX_WIDTH};

@@ -29,6 +29,8 @@ pub const FREENECT_DEPTH_11BIT: c_int = 0;
 pub const FREENECT_DEPTH_MM: c_int = 5;
 /// `freenect_device_flags`: the motor and accelerometer.
 pub const FREENECT_DEVICE_MOTOR: c_int = 0x01;
+/// `FREENECT_VIDEO_RGB`: 8-bit RGB, 3 bytes a pixel.
+pub const FREENECT_VIDEO_RGB: c_int = 0;
 /// `freenect_device_flags`: the cameras.
 pub const FREENECT_DEVICE_CAMERA: c_int = 0x02;
 /// Accelerometer counts per g.
@@ -83,6 +85,9 @@ pub struct freenect_raw_tilt_state {
 /// Depth callback: the frame buffer is libfreenect's and valid only during the call.
 pub type freenect_depth_cb =
     Option<unsafe extern "C" fn(dev: *mut freenect_device, depth: *mut c_void, timestamp: u32)>;
+/// Video callback: the frame buffer is libfreenect's and valid only during the call.
+pub type freenect_video_cb =
+    Option<unsafe extern "C" fn(dev: *mut freenect_device, video: *mut c_void, timestamp: u32)>;
 /// Log callback: an already formatted message.
 pub type freenect_log_cb =
     Option<unsafe extern "C" fn(ctx: *mut freenect_context, level: c_int, msg: *const c_char)>;
@@ -134,6 +139,16 @@ extern "C" {
     pub fn freenect_start_depth(dev: *mut freenect_device) -> c_int;
     /// Stop the depth stream.
     pub fn freenect_stop_depth(dev: *mut freenect_device) -> c_int;
+    /// Set the video callback.
+    pub fn freenect_set_video_callback(dev: *mut freenect_device, cb: freenect_video_cb);
+    /// Find a video mode.
+    pub fn freenect_find_video_mode(res: c_int, fmt: c_int) -> freenect_frame_mode;
+    /// Set the video mode.
+    pub fn freenect_set_video_mode(dev: *mut freenect_device, mode: freenect_frame_mode) -> c_int;
+    /// Start the video stream.
+    pub fn freenect_start_video(dev: *mut freenect_device) -> c_int;
+    /// Stop the video stream.
+    pub fn freenect_stop_video(dev: *mut freenect_device) -> c_int;
     /// Read the tilt state from the device.
     pub fn freenect_update_tilt_state(dev: *mut freenect_device) -> c_int;
     /// The last tilt state read.
@@ -167,6 +182,12 @@ mod tests {
         assert_eq!(
             (m.is_valid, m.width, m.height, m.bytes),
             (1, 640, 480, 640 * 480 * 2)
+        );
+        // Safety: as above.
+        let v = unsafe { freenect_find_video_mode(FREENECT_RESOLUTION_MEDIUM, FREENECT_VIDEO_RGB) };
+        assert_eq!(
+            (v.is_valid, v.width, v.height, v.bytes),
+            (1, 640, 480, 640 * 480 * 3)
         );
     }
 }
