@@ -371,9 +371,7 @@ impl Config {
                 return Err(("camera.source", e.to_string()));
             }
         }
-        if !(1..=240).contains(&c.fps) {
-            return Err(("camera.fps", format!("must be 1..=240, got {}", c.fps)));
-        }
+        within("camera.fps", c.fps, 1, 240)?;
         positive("camera.depth_scale_mm", c.depth_scale_mm)?;
         let m = &self.mount;
         for (key, v) in [
@@ -458,30 +456,10 @@ impl Config {
             return Err(("link.baud", "must be positive".into()));
         }
         let sv = &self.service;
-        if !(10..=60_000).contains(&sv.frame_timeout_ms) {
-            return Err((
-                "service.frame_timeout_ms",
-                format!("must be 10..=60000, got {}", sv.frame_timeout_ms),
-            ));
-        }
-        if !(10..=10_000).contains(&sv.heartbeat_ms) {
-            return Err((
-                "service.heartbeat_ms",
-                format!("must be 10..=10000, got {}", sv.heartbeat_ms),
-            ));
-        }
-        if !(1..=3600).contains(&sv.stats_interval_s) {
-            return Err((
-                "service.stats_interval_s",
-                format!("must be 1..=3600, got {}", sv.stats_interval_s),
-            ));
-        }
-        if !(3..=16).contains(&sv.pool_frames) {
-            return Err((
-                "service.pool_frames",
-                format!("must be 3..=16, got {}", sv.pool_frames),
-            ));
-        }
+        within("service.frame_timeout_ms", sv.frame_timeout_ms, 10, 60_000)?;
+        within("service.heartbeat_ms", sv.heartbeat_ms, 10, 10_000)?;
+        within("service.stats_interval_s", sv.stats_interval_s, 1, 3600)?;
+        within("service.pool_frames", sv.pool_frames, 3, 16)?;
         if sv.log_level.parse::<log::LevelFilter>().is_err() {
             return Err((
                 "service.log_level",
@@ -511,6 +489,20 @@ impl Config {
             ));
         }
         Ok(())
+    }
+}
+
+/// `Ok` if `v` is within `lo..=hi`, else the key and the range it must be in.
+fn within<T: PartialOrd + std::fmt::Display>(
+    key: &'static str,
+    v: T,
+    lo: T,
+    hi: T,
+) -> Result<(), (&'static str, String)> {
+    if v >= lo && v <= hi {
+        Ok(())
+    } else {
+        Err((key, format!("must be {lo}..={hi}, got {v}")))
     }
 }
 

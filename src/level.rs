@@ -125,6 +125,21 @@ impl Leveler {
     }
 }
 
+/// Feed one tilt reading to `leveler`, and when the attitude moved, analyse with it
+/// from now on (logged; a mount the pipeline cannot use is logged and ignored).
+pub fn apply(leveler: &mut Leveler, tilt: &TiltState, pipeline: &mut crate::Pipeline) {
+    if let Some(a) = leveler.update(tilt) {
+        match pipeline.set_attitude(a) {
+            Ok(()) => log::info!(
+                "auto-level: pitch {:.2}°, roll {:.2}°",
+                a.pitch_deg,
+                a.roll_deg
+            ),
+            Err(e) => log::warn!("auto-level ignored: {e}"),
+        }
+    }
+}
+
 /// The tilt state a still Kinect mounted at `pitch_deg`/`roll_deg` reads (counts,
 /// rounded), by the mount convention of the projector: for tests and recordings.
 pub fn tilt_for(pitch_deg: f64, roll_deg: f64) -> TiltState {

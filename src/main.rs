@@ -324,11 +324,12 @@ fn run(cli: Cli, service_config: Option<anyhow::Result<Config>>) -> anyhow::Resu
             let inputs = sources(camera, input, Some(bundled("fixtures/scenes")))?;
             let stdout = std::io::stdout();
             let mut out = stdout.lock();
-            let failed = for_each_verdict(config, &inputs, frames, |v, source, _| {
+            let failed = for_each_verdict(config, &inputs, frames, |a| {
+                let v = a.verdict;
                 let json = match format {
                     Format::Full => {
                         let mut json = v.to_json();
-                        if let Some(p) = source {
+                        if let Some(p) = a.source {
                             json["source"] = serde_json::Value::from(p.display().to_string());
                         }
                         json
@@ -357,9 +358,9 @@ fn run(cli: Cli, service_config: Option<anyhow::Result<Config>>) -> anyhow::Resu
             // Fail at once, clearly, if the link cannot be opened at all.
             drop(link::open(&link, baud)?);
             let mut resilient = Resilient::new(link.clone(), baud);
-            let failed = for_each_verdict(config, &inputs, frames, |v, _, captured| {
-                let age_ms = captured.elapsed().as_secs_f64() * 1e3;
-                resilient.send_verdict(&wire::to_wire(v, age_ms));
+            let failed = for_each_verdict(config, &inputs, frames, |a| {
+                let age_ms = a.captured.elapsed().as_secs_f64() * 1e3;
+                resilient.send_verdict(&wire::to_wire(a.verdict, age_ms));
                 Ok(())
             })?;
             resilient.flush();
@@ -492,45 +493,20 @@ fn inspect(
 ) -> anyhow::Result<ExitCode> {
     use rover_terrain::inspect::{write_frame_set, Scene};
     let single = match spec {
-        CameraSpec::Fake(p) => FakeCamera::open(p)?.len() == 1,
+        CameraSpec::Fake(p) => FakeCamera::open(p).is_ok_and(|c| c.len() == 1),
         _ => false,
     };
-    let mut camera = rover_terrain_drivers::open_with(spec, &config.camera_options())?;
-    camera.start()?;
-    let mut pipeline = Pipeline::new(config)?;
-    let mut frame = DepthFrame::default();
-    let (mut n, mut written, mut failed) = (0u64, 0u64, false);
-    while limit.is_none_or(|l| n < l) {
-        match camera.next_frame(&mut frame) {
-            Ok(FrameStatus::Frame) => {}
-            Ok(FrameStatus::EndOfStream) => break,
-            Err(e @ rover_terrain_drivers::DriverError::Malformed { .. }) => {
-                eprintln!("rover-terrain: {e}");
-                failed = true;
-                n += 1;
-                continue;
-            }
-            Err(e) => return Err(e.into()),
+    let mut written = 0u64;
+    let failed = for_each_verdict(config, std::slice::from_ref(spec), limit, |a| {
+        if a.frame.seq % every != 0 {
+            return Ok(());
         }
-        frame.seq = n;
-        n += 1;
-        if (n - 1) % every != 0 {
-            continue;
-        }
-        let verdict = match pipeline.process(&frame) {
-            Ok(v) => v.clone(),
-            Err(e) => {
-                eprintln!("rover-terrain: {e}");
-                failed = true;
-                continue;
-            }
-        };
         let dir = if single {
             out.to_path_buf()
         } else {
-            out.join(format!("frame-{:06}", frame.seq))
+            out.join(format!("frame-{:06}", a.frame.seq))
         };
-        let set = write_frame_set(&frame, &Scene::of(&pipeline, &verdict), &dir)?;
+        let set = write_frame_set(a.frame, &Scene::of(a.pipeline, a.verdict), &dir)?;
         let files: Vec<String> = [&set.depth, &set.topdown, &set.side, &set.pcd, &set.ply]
             .iter()
             .map(|p| p.display().to_string())
@@ -538,14 +514,15 @@ fn inspect(
         println!(
             "{}",
             serde_json::json!({
-                "frame": frame.seq,
-                "verdict": verdict.decision,
+                "frame": a.frame.seq,
+                "verdict": a.verdict.decision,
                 "dir": dir.display().to_string(),
                 "files": files,
             })
         );
         written += 1;
-    }
+        Ok(())
+    })?;
     anyhow::ensure!(written > 0 || failed, "no frame to inspect");
     Ok(if failed {
         ExitCode::from(EXIT_FAILURE)
@@ -683,11 +660,25 @@ fn sources(
 /// (with its source file and the moment its frame was read) to `on_verdict`. A bad
 /// source or frame is reported on stderr and the rest still analysed; returns whether
 /// anything failed.
+/// One analysed frame, as [`for_each_verdict`] hands it over.
+struct Analysed<'a> {
+    /// The verdict.
+    verdict: &'a Verdict,
+    /// The file the frame came from, for file sources.
+    source: Option<&'a Path>,
+    /// When the frame was read.
+    captured: std::time::Instant,
+    /// The frame.
+    frame: &'a DepthFrame,
+    /// The pipeline that analysed it (its grid and analysis state).
+    pipeline: &'a Pipeline,
+}
+
 fn for_each_verdict(
     config: Config,
     sources: &[CameraSpec],
     limit: Option<u64>,
-    mut on_verdict: impl FnMut(&Verdict, Option<&Path>, std::time::Instant) -> anyhow::Result<()>,
+    mut on_verdict: impl FnMut(&Analysed<'_>) -> anyhow::Result<()>,
 ) -> anyhow::Result<bool> {
     let (w, h) = (config.camera.width as usize, config.camera.height as usize);
     let camera_options = config.camera_options();
@@ -726,26 +717,22 @@ fn for_each_verdict(
                 }
             }
             if let Some(l) = leveler.as_mut() {
-                let due = rover_terrain::level::read_due(index);
-                if let Some(a) = due
-                    .then(|| camera.tilt_state())
-                    .flatten()
-                    .and_then(|t| l.update(&t))
-                {
-                    match pipeline.set_attitude(a) {
-                        Ok(()) => log::info!(
-                            "auto-level: pitch {:.2}°, roll {:.2}°",
-                            a.pitch_deg,
-                            a.roll_deg
-                        ),
-                        Err(e) => log::warn!("auto-level ignored: {e}"),
+                if rover_terrain::level::read_due(index) {
+                    if let Some(t) = camera.tilt_state() {
+                        rover_terrain::level::apply(l, &t, &mut pipeline);
                     }
                 }
             }
             frame.seq = index;
             index += 1;
             match pipeline.process(&frame) {
-                Ok(v) => on_verdict(v, camera.last_source(), captured)?,
+                Ok(_) => on_verdict(&Analysed {
+                    verdict: pipeline.verdict(),
+                    source: camera.last_source(),
+                    captured,
+                    frame: &frame,
+                    pipeline: &pipeline,
+                })?,
                 Err(e) => {
                     let name = camera
                         .last_source()

@@ -83,6 +83,11 @@ impl Pipeline {
         &self.config
     }
 
+    /// The verdict of the last frame processed.
+    pub fn verdict(&self) -> &Verdict {
+        &self.verdict
+    }
+
     /// The voxel grid of the last frame (voxels and ground cells).
     pub fn grid(&self) -> &VoxelGrid {
         &self.grid

@@ -265,12 +265,9 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
         select! {
             recv(ready_rx) -> msg => match msg {
                 Ok(CameraMsg::Frame(slot)) => {
-                    if let Some(a) = slot.tilt.zip(leveler.as_mut()).and_then(|(t, l)| l.update(&t)) {
-                        // Rare (the attitude moved by more than 0.5°): rebuilds tables.
-                        match pipeline.set_attitude(a) {
-                            Ok(()) => log::info!("auto-level: pitch {:.2}°, roll {:.2}°", a.pitch_deg, a.roll_deg),
-                            Err(e) => log::warn!("auto-level ignored: {e}"),
-                        }
+                    if let Some((t, l)) = slot.tilt.zip(leveler.as_mut()) {
+                        // Rebuilds tables only when the attitude moved by over 0.5°.
+                        crate::level::apply(l, &t, &mut pipeline);
                     }
                     let t0 = Instant::now();
                     let queued = t0 - slot.arrived;
