@@ -31,13 +31,18 @@ fn analyze(args: &[&str]) -> std::process::Output {
 fn the_unit_verifies() {
     let dir = tempfile::tempdir().unwrap();
     let unit = unit_for_test(dir.path());
-    let out = analyze(&["verify", unit.to_str().unwrap()]);
+    let out = analyze(&["verify", "--recursive-errors=no", unit.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
     assert!(
         !stderr.contains("rover-terrain.service:"),
         "no complaint about the unit: {stderr}"
     );
+    // The same check refuses a unit with a misspelt key.
+    let text = std::fs::read_to_string(&unit).unwrap();
+    std::fs::write(&unit, text.replace("WatchdogSec=", "WatchDogSec=")).unwrap();
+    let out = analyze(&["verify", "--recursive-errors=no", unit.to_str().unwrap()]);
+    assert!(!out.status.success(), "a misspelt key is an error");
 }
 
 #[test]
