@@ -18,7 +18,7 @@ pub use resilient::{Resilient, BACKOFF_MAX, BACKOFF_MIN};
 pub use rover_terrain_proto as proto;
 pub use serial::SerialTransport;
 pub use slcan::SlcanTransport;
-pub use stdout::StdoutTransport;
+pub use stdout::{JsonLines, StdoutTransport};
 
 use crate::Error;
 

@@ -3,7 +3,7 @@
 //! what the analysis said.
 
 use rover_terrain_proto as proto;
-use serde_json::json;
+use serde::Serialize;
 
 use crate::verdict::{Decision, HazardKind, Side, Verdict};
 
@@ -75,39 +75,93 @@ fn name_side(s: proto::Side) -> &'static str {
     }
 }
 
-/// The wire verdict as one JSON object (keys sorted; no timing, no age: the same
-/// bytes for the same frame whoever prints them).
-pub fn verdict_json(v: &proto::Verdict) -> serde_json::Value {
-    json!({
-        "type": "verdict",
-        "seq": v.seq,
-        "verdict": match v.decision {
-            proto::Decision::Go => "go",
-            proto::Decision::Stop => "stop",
-            proto::Decision::Unknown => "unknown",
-        },
-        "workcase": (v.workcase != 0).then_some(v.workcase),
-        "hazard": v.hazard.map(|(k, s)| json!({"kind": name_kind(k), "side": name_side(s)})),
-        "distance_m": v.distance_cm.map(|d| f64::from(d) / 100.0),
-        "gradient_deg": v.gradient_ddeg.map(|g| f64::from(g) / 10.0),
-        "alpha_deg": v.alpha_ddeg.map(|a| f64::from(a) / 10.0),
-        "seen_fraction": f64::from(v.seen_permille) / 1000.0,
-    })
+/// The wire verdict as JSON: keys in sorted order, no timing and no age, so that the
+/// same frame gives the same bytes whoever prints it. Borrowing, so that writing it
+/// with [`serde_json::to_writer`] allocates nothing.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct VerdictJson {
+    alpha_deg: Option<f64>,
+    distance_m: Option<f64>,
+    gradient_deg: Option<f64>,
+    hazard: Option<HazardJson>,
+    seen_fraction: f64,
+    seq: u32,
+    #[serde(rename = "type")]
+    kind: &'static str,
+    verdict: &'static str,
+    workcase: Option<u8>,
 }
 
-/// A heartbeat as one JSON object.
+#[derive(Debug, Clone, Copy, Serialize)]
+struct HazardJson {
+    kind: &'static str,
+    side: &'static str,
+}
+
+impl From<&proto::Verdict> for VerdictJson {
+    fn from(v: &proto::Verdict) -> Self {
+        VerdictJson {
+            alpha_deg: v.alpha_ddeg.map(|a| f64::from(a) / 10.0),
+            distance_m: v.distance_cm.map(|d| f64::from(d) / 100.0),
+            gradient_deg: v.gradient_ddeg.map(|g| f64::from(g) / 10.0),
+            hazard: v.hazard.map(|(k, s)| HazardJson {
+                kind: name_kind(k),
+                side: name_side(s),
+            }),
+            seen_fraction: f64::from(v.seen_permille) / 1000.0,
+            seq: v.seq,
+            kind: "verdict",
+            verdict: match v.decision {
+                proto::Decision::Go => "go",
+                proto::Decision::Stop => "stop",
+                proto::Decision::Unknown => "unknown",
+            },
+            workcase: (v.workcase != 0).then_some(v.workcase),
+        }
+    }
+}
+
+/// A heartbeat as JSON (keys sorted), written without allocating like [`VerdictJson`].
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct HeartbeatJson {
+    camera_ok: bool,
+    dropped: u16,
+    frame_rate_hz: f64,
+    seq: u8,
+    state: &'static str,
+    #[serde(rename = "type")]
+    kind: &'static str,
+}
+
+impl From<&proto::Heartbeat> for HeartbeatJson {
+    fn from(h: &proto::Heartbeat) -> Self {
+        HeartbeatJson {
+            camera_ok: h.camera_ok,
+            dropped: h.dropped,
+            frame_rate_hz: f64::from(h.frame_rate_chz) / 100.0,
+            seq: h.seq,
+            state: match h.state {
+                proto::ServiceState::Starting => "starting",
+                proto::ServiceState::Running => "running",
+                proto::ServiceState::Degraded => "degraded",
+                proto::ServiceState::Stopping => "stopping",
+            },
+            kind: "heartbeat",
+        }
+    }
+}
+
+/// The wire verdict as one JSON value (see [`VerdictJson`]).
+pub fn verdict_json(v: &proto::Verdict) -> serde_json::Value {
+    to_value(VerdictJson::from(v))
+}
+
+/// A heartbeat as one JSON value (see [`HeartbeatJson`]).
 pub fn heartbeat_json(h: &proto::Heartbeat) -> serde_json::Value {
-    json!({
-        "type": "heartbeat",
-        "state": match h.state {
-            proto::ServiceState::Starting => "starting",
-            proto::ServiceState::Running => "running",
-            proto::ServiceState::Degraded => "degraded",
-            proto::ServiceState::Stopping => "stopping",
-        },
-        "camera_ok": h.camera_ok,
-        "frame_rate_hz": f64::from(h.frame_rate_chz) / 100.0,
-        "dropped": h.dropped,
-        "seq": h.seq,
-    })
+    to_value(HeartbeatJson::from(h))
+}
+
+fn to_value(v: impl Serialize) -> serde_json::Value {
+    // Plain structs of numbers, strings and options always serialise.
+    serde_json::to_value(v).unwrap_or(serde_json::Value::Null)
 }
