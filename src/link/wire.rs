@@ -76,8 +76,8 @@ fn name_side(s: proto::Side) -> &'static str {
 }
 
 /// The wire verdict as JSON: keys in sorted order, no timing and no age, so that the
-/// same frame gives the same bytes whoever prints it. Borrowing, so that writing it
-/// with [`serde_json::to_writer`] allocates nothing.
+/// same frame gives the same bytes whoever prints it. Only numbers and `'static`
+/// names, so writing it with [`serde_json::to_writer`] allocates nothing.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct VerdictJson {
     alpha_deg: Option<f64>,
