@@ -25,11 +25,18 @@ fn main() {
         for iy in (0..spec.ny).rev() {
             let c = spec.cell(ix, iy);
             let cell = p.grid().cells()[c];
+            let cut = p.grid().cut()[c];
             line += &if cell.n >= 3 {
                 format!(
                     "{:3.0}{}",
                     cell.z * 100.0,
-                    if cell.n < 10 { "'" } else { " " }
+                    if cut {
+                        "^"
+                    } else if cell.n < 10 {
+                        "'"
+                    } else {
+                        " "
+                    }
                 )
             } else if exp[c] {
                 "   ?".into()
@@ -39,4 +46,27 @@ fn main() {
         }
         println!("{line}");
     }
+    if let Some(iy) = std::env::var("STRIP")
+        .ok()
+        .and_then(|s| s.parse::<usize>().ok())
+    {
+        for ix in 0..spec.nx {
+            let c = spec.cell(ix, iy);
+            let cell = p.grid().cells()[c];
+            println!(
+                "ix {ix} x {:.3} n {} z {:.3} top {:.3} low {:.3} crest {:.3} foot {:.3} cut {}",
+                cell.x,
+                cell.n,
+                cell.z,
+                cell.top,
+                cell.low,
+                cell.crest,
+                cell.foot,
+                p.grid().cut()[c]
+            );
+        }
+    }
 }
+
+#[allow(dead_code)]
+fn unused() {}

@@ -1,9 +1,11 @@
 //! A randomised sweep of scenes the fixtures do not contain, checked against the
 //! issue's bars, clean and with Kinect v1 noise:
-//! `cargo run --release --example sweep -- [workcases|hazards] [N] [SEED]`.
+//! `cargo run --release --example sweep -- [workcases|hazards] [N] [SEED]`, or
+//! `-- families [N] [SEED] [default|random] [FAMILY-INDEX]` for the scene families of
+//! `sim::families` on the default rig or on random mounts and cameras.
 
 use rand::SeedableRng;
-use rover_terrain::sim::{self, random, KinectNoise};
+use rover_terrain::sim::{self, families, random, KinectNoise};
 use rover_terrain::validate::{compare, CLEAN, NOISY};
 use rover_terrain::{Config, Pipeline};
 
@@ -13,14 +15,34 @@ fn main() {
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(80);
     let seed: u64 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(1);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let config = Config::default();
-    let mut pipeline = Pipeline::new(config.clone()).expect("default config works");
     let (mut failures, mut total) = (0, 0);
     for i in 0..n {
-        let (terrain, want) = match mode {
-            "hazards" => random::hazard_scene(&mut rng, i),
-            _ => random::workcase_scene(&mut rng, i),
+        let mut tol = (CLEAN, NOISY);
+        let (terrain, want, config) = match mode {
+            "hazards" => {
+                let (t, w) = random::hazard_scene(&mut rng, i);
+                (t, w, Config::default())
+            }
+            "families" => {
+                let rig = if args.get(4).map(String::as_str) == Some("random") {
+                    families::Rig::random(&mut rng)
+                } else {
+                    families::Rig::default_rig()
+                };
+                let fam = match args.get(5).and_then(|s| s.parse::<usize>().ok()) {
+                    Some(k) => families::Family::ALL[k],
+                    None => families::Family::ALL[i % families::Family::ALL.len()],
+                };
+                let d = families::draw(&mut rng, fam, rig);
+                tol = d.tolerance;
+                (d.terrain, d.expect, d.rig.config)
+            }
+            _ => {
+                let (t, w) = random::workcase_scene(&mut rng, i);
+                (t, w, Config::default())
+            }
         };
+        let mut pipeline = Pipeline::new(config.clone()).expect("config works");
         let frame = sim::render(&terrain, &config);
         for noisy in [false, true] {
             let mut f = frame.clone();
@@ -32,13 +54,13 @@ fn main() {
                 .apply(&mut f, config.camera.hfov_deg);
             }
             let v = pipeline.process(&f).expect("frame fits");
-            let fails = compare(&want, if noisy { &NOISY } else { &CLEAN }, v);
+            let fails = compare(&want, if noisy { &tol.1 } else { &tol.0 }, v);
             total += 1;
             if !fails.is_empty() {
                 failures += 1;
                 println!(
-                    "FAIL #{i} noisy={noisy} {:?}: {fails:?} hazards={:?}",
-                    terrain.elements, v.hazards
+                    "FAIL #{i} noisy={noisy} {:?} mount={:?} cam={}x{}: {fails:?} hazards={:?} feature={:?}",
+                    terrain.elements, config.mount, config.camera.width, config.camera.height, v.hazards, v.feature
                 );
             }
         }

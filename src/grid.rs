@@ -127,7 +127,29 @@ pub struct Cell {
     pub z: f32,
     /// Highest voxel centroid with at least [`TOP_MIN_POINTS`] points, metres.
     pub top: f32,
+    /// Lowest voxel centroid with at least [`TOP_MIN_POINTS`] points, metres. Far
+    /// below `top` (see [`Cell::split`]) when the cell holds a vertical face: two
+    /// surfaces, the face's foot and its crest.
+    pub low: f32,
+    /// Mean height of the points within [`SURFACE_BAND`] voxels of `top`: the upper
+    /// surface of the cell, without the points of a face below it, metres. Equal to
+    /// `z` when the cell's points span no more than that band; `foot` when the band
+    /// holds less than [`SURFACE_MIN_SHARE`] of the points.
+    pub crest: f32,
+    /// Mean height of the points within [`SURFACE_BAND`] voxels of `low`: the lower
+    /// surface of the cell, without the points of a face above it, metres; `crest`
+    /// when the band holds less than [`SURFACE_MIN_SHARE`] of the points.
+    pub foot: f32,
 }
+
+/// Least share of a cell's points that makes its upper or lower band a surface; a
+/// band with fewer is the fringe of a face seen edge-on, and the other band stands
+/// for both.
+pub const SURFACE_MIN_SHARE: f32 = 0.25;
+
+/// How many voxels below a cell's top (above its low) count as its upper (lower)
+/// surface: two voxel layers, all that one sloped or noisy surface spans in a cell.
+pub const SURFACE_BAND: f32 = 1.5;
 
 impl Cell {
     const EMPTY: Cell = Cell {
@@ -136,8 +158,28 @@ impl Cell {
         y: 0.0,
         z: 0.0,
         top: f32::NEG_INFINITY,
+        low: f32::INFINITY,
+        crest: 0.0,
+        foot: 0.0,
     };
+
+    /// Whether the cell holds two surfaces: its lowest and highest voxels lie at
+    /// least [`SPLIT_M`] apart (a vertical face inside the cell: a band edge, the
+    /// front of a step or rock).
+    #[inline]
+    pub fn split(&self) -> bool {
+        self.top - self.low >= SPLIT_M
+    }
 }
+
+/// Height between a cell's lowest and highest voxel that makes it hold a vertical
+/// face, metres (two voxels at the default 5 cm: more than noise spreads one
+/// surface over within a cell).
+pub const SPLIT_M: f32 = 0.095;
+
+/// Image rows, from the top, whose points mark the cells where the view is cut
+/// ([`VoxelGrid::mark_cut`]); two, so that one dropped pixel does not hide a cut.
+pub const CUT_ROWS: usize = 2;
 
 /// Voxels with fewer points than this do not count for a column's top (one stray
 /// point must not raise a rock).
@@ -271,6 +313,9 @@ pub struct VoxelGrid {
     voxels: Vec<Voxel>,
     cells: Vec<Cell>,
     touched_cells: Vec<u32>,
+    surface_n: Vec<[f32; 2]>,
+    cut: Vec<bool>,
+    touched_cut: Vec<u32>,
     row: RowBuffers,
     cols: ColumnRays,
 }
@@ -287,6 +332,9 @@ impl VoxelGrid {
             voxels: Vec::with_capacity(cap),
             cells: vec![Cell::EMPTY; spec.cell_count()],
             touched_cells: Vec::with_capacity(spec.cell_count()),
+            surface_n: vec![[0.0; 2]; spec.cell_count()],
+            cut: vec![false; spec.cell_count()],
+            touched_cut: Vec::with_capacity(spec.cell_count()),
             row: RowBuffers::default(),
             cols: ColumnRays::default(),
         }
@@ -305,6 +353,56 @@ impl VoxelGrid {
     /// The ground cells of the last frame, indexed by [`GridSpec::cell`].
     pub fn cells(&self) -> &[Cell] {
         &self.cells
+    }
+
+    /// Ground cells the image's top edge cuts through, indexed by [`GridSpec::cell`]
+    /// (see [`VoxelGrid::mark_cut`]).
+    pub fn cut(&self) -> &[bool] {
+        &self.cut
+    }
+
+    /// Mark the ground cells that points of the image's top [`CUT_ROWS`] rows fall in:
+    /// there the surface leaves the field of view, so what the cell holds is only the
+    /// lower part of what stands there (its height is a lower bound) and the ground
+    /// beyond it along the line of sight is beyond view. `depth` is the whole image.
+    pub fn mark_cut(&mut self, projector: &Projector, depth: &[u16], min_mm: u16, max_mm: u16) {
+        for &c in &self.touched_cut {
+            self.cut[c as usize] = false;
+        }
+        self.touched_cut.clear();
+        let s = self.spec;
+        let o = projector.origin();
+        let width = projector.width();
+        let top = s.origin[2] + s.nz as f32 * s.voxel_m;
+        for (row, pixels) in projector
+            .row_table()
+            .iter()
+            .zip(depth.chunks_exact(width))
+            .take(CUT_ROWS)
+        {
+            for (col, &d) in projector.col_table().iter().zip(pixels) {
+                if d < min_mm.max(1) || d > max_mm {
+                    continue;
+                }
+                let z = f32::from(d) * 0.001;
+                let p = [
+                    o[0] + z * (col[0] + row[0]),
+                    o[1] + z * (col[1] + row[1]),
+                    o[2] + z * (col[2] + row[2]),
+                ];
+                if p[2] < s.origin[2] || p[2] >= top {
+                    continue;
+                }
+                if let Some((ix, iy)) = s.cell_at(p[0], p[1]) {
+                    let c = s.cell(ix, iy);
+                    if !self.cut[c] {
+                        self.cut[c] = true;
+                        // Capacity is the cell count: never reallocates.
+                        self.touched_cut.push(c as u32);
+                    }
+                }
+            }
+        }
     }
 
     /// Project, transform and bin one depth image (`projector`'s size) in one pass.
@@ -416,8 +514,9 @@ impl VoxelGrid {
             cell.x += v.x * n;
             cell.y += v.y * n;
             cell.z += v.z * n;
-            if a.n >= TOP_MIN_POINTS && v.z > cell.top {
-                cell.top = v.z;
+            if a.n >= TOP_MIN_POINTS {
+                cell.top = cell.top.max(v.z);
+                cell.low = cell.low.min(v.z);
             }
         }
         for &c in &self.touched_cells {
@@ -428,7 +527,38 @@ impl VoxelGrid {
             cell.z /= n;
             if cell.top == f32::NEG_INFINITY {
                 cell.top = cell.z;
+                cell.low = cell.z;
             }
+        }
+        // The upper and lower surfaces: a second pass over the voxels, now that each
+        // cell's top and low are known (point counts of the two bands in scratch).
+        let band = SURFACE_BAND * vs;
+        for &c in &self.touched_cells {
+            self.surface_n[c as usize] = [0.0; 2];
+        }
+        for (&i, v) in self.touched.iter().zip(&self.voxels) {
+            let c = i as usize / s.nz;
+            let cell = &mut self.cells[c];
+            let w = &mut self.surface_n[c];
+            let n = v.count as f32;
+            if v.z >= cell.top - band {
+                cell.crest += v.z * n;
+                w[0] += n;
+            }
+            if v.z <= cell.low + band {
+                cell.foot += v.z * n;
+                w[1] += n;
+            }
+        }
+        for &c in &self.touched_cells {
+            let cell = &mut self.cells[c as usize];
+            let [wc, wf] = self.surface_n[c as usize];
+            // A band with few of the cell's points is a face's fringe, not a surface.
+            let least = SURFACE_MIN_SHARE * cell.n as f32;
+            let crest = (wc >= least).then(|| cell.crest / wc);
+            let foot = (wf >= least).then(|| cell.foot / wf);
+            cell.crest = crest.or(foot).unwrap_or(cell.z);
+            cell.foot = foot.or(crest).unwrap_or(cell.z);
         }
     }
 }

@@ -69,6 +69,11 @@ pub struct Feature {
     /// Angle of the toe line to the lateral axis, degrees, positive when its left end
     /// is nearer.
     pub alpha_deg: Option<f32>,
+    /// Whether the toe line lies where the camera sees the ground. `false` when it
+    /// lies in the blind zone before the nearest seen ground: the face was seen
+    /// already rising and `distance_m` is where the fitted face meets the ground, an
+    /// extrapolation.
+    pub toe_seen: bool,
 }
 
 impl Feature {
@@ -78,7 +83,20 @@ impl Feature {
         distance_m: None,
         gradient_deg: None,
         alpha_deg: None,
+        toe_seen: true,
     };
+}
+
+/// How far each band of the corridor is seen before the sensor's horizon (where the
+/// surface leaves the image, or the flat-ground view ends), metres forward.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct SeenTo {
+    /// The left wheel track.
+    pub left: f32,
+    /// The band under the belly.
+    pub centre: f32,
+    /// The right wheel track.
+    pub right: f32,
 }
 
 /// Most hazards a verdict carries: one per kind and side.
@@ -112,6 +130,8 @@ pub struct Verdict {
     pub hazards: heapless::Vec<Hazard, MAX_HAZARDS>,
     /// Fraction of the corridor cells the camera should see that it did see, 0..=1.
     pub seen_fraction: f32,
+    /// How far each band is seen before the sensor's horizon, metres.
+    pub seen_to_m: SeenTo,
     /// Depth pixels inside the range limits.
     pub points_in: u32,
     /// Points that fell inside the voxel grid.
@@ -143,6 +163,7 @@ impl Default for Verdict {
             feature: None,
             hazards: heapless::Vec::new(),
             seen_fraction: 0.0,
+            seen_to_m: SeenTo::default(),
             points_in: 0,
             points_binned: 0,
             voxels: 0,
@@ -194,8 +215,14 @@ impl Verdict {
             "distance_m": f.and_then(|f| f.distance_m).map(r4),
             "gradient_deg": f.and_then(|f| f.gradient_deg).map(r3),
             "alpha_deg": f.and_then(|f| f.alpha_deg).map(r3),
+            "toe_seen": f.map(|f| f.toe_seen),
             "hazards": hazards,
             "seen_fraction": r3(self.seen_fraction),
+            "seen_to_m": {
+                "left": r3(self.seen_to_m.left),
+                "centre": r3(self.seen_to_m.centre),
+                "right": r3(self.seen_to_m.right),
+            },
             "points_in": self.points_in,
             "points_binned": self.points_binned,
             "voxels": self.voxels,

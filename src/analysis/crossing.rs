@@ -3,7 +3,7 @@
 //! seen but is not (gaps, drop-offs).
 
 use super::plane::PlaneFit;
-use super::{Frame, Region};
+use super::{Frame, Region, StripCell};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
 /// Steps and slopes in the wheel tracks.
@@ -14,65 +14,117 @@ use crate::verdict::{Hazard, HazardKind, Verdict};
 /// happens within two cells (≤ 0.1 m at the default voxel), a *slope* otherwise. A
 /// change smaller than the wheel radius is climbable however steep (a low step); a
 /// long climb is impassable only if it is steep.
-pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<(f32, f32, usize)>, verdict: &mut Verdict) {
+///
+/// A cell holding a vertical face (a band edge, a step's front) has two surfaces, the
+/// face's crest and its foot ([`crate::grid::Cell::crest`], [`crate::grid::Cell::foot`];
+/// both the mean for a cell with one surface); its mean belongs to neither. The strip
+/// follows, in each such cell, the surface that continues it (the one nearer the last
+/// cell's height), so a face along the strip (a ramp under the track beside a flat
+/// belly band, a trench) makes no step, while a face across it still does: past the
+/// face the cells have one surface, the other side's.
+///
+/// A cell the image's top edge cuts through holds only the lower part of what stands
+/// there: its top is a lower bound on its height. So a rise *into* such a cell, or a
+/// fall *out of* it, is measured (the bound proves it), while a fall into it or a
+/// rise out of it proves nothing and is not a hazard: the surface simply left the
+/// view (a ramp rising out of the image, seen past its horizon only by its side face).
+pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<StripCell>, verdict: &mut Verdict) {
     let r = f.cfg.rover.wheel_radius_m as f32;
     let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
     let vs = f.spec.voxel_m;
     for region in [Region::Left, Region::Right] {
         for iy in f.strips(region) {
             strip.clear();
+            let mut last: Option<f32> = None;
             for ix in 0..f.spec.nx {
                 let c = f.spec.cell(ix, iy);
-                if f.seen[c] {
-                    strip.push((f.cells[c].x, f.cells[c].z, ix));
+                if !f.seen[c] {
+                    continue;
                 }
+                let cell = &f.cells[c];
+                let cut = f.past[c];
+                let z = if cut {
+                    cell.top.max(cell.z)
+                } else {
+                    // Of a cell's two surfaces, the one that continues the strip.
+                    let near = last.unwrap_or(cell.foot);
+                    if (cell.crest - near).abs() <= (cell.foot - near).abs() {
+                        cell.crest
+                    } else {
+                        cell.foot
+                    }
+                };
+                last = Some(z);
+                strip.push(StripCell {
+                    x: cell.x,
+                    z,
+                    ix,
+                    cut,
+                });
             }
-            for (i, &(xi, zi, _)) in strip.iter().enumerate() {
-                for (j, &(xj, zj, _)) in strip.iter().enumerate().skip(i + 1) {
-                    let (dx, dz) = (xj - xi, zj - zi);
-                    if dz.abs() <= r {
-                        continue;
-                    }
-                    if holey(&strip[i..=j]) {
-                        break; // unseen ground in between: the gap test judges it
-                    }
-                    if dx > 0.0 && dz.abs() >= tan_max * dx {
-                        let kind = if dx <= 3.5 * vs {
-                            Some((HazardKind::Step, 0.5 * (xi + xj)))
-                        } else if sustained(&strip[i..=j]) {
-                            Some((HazardKind::Slope, xi))
-                        } else {
-                            None // flat, then a jump: a step, found from nearer cells
-                        };
-                        let Some((kind, at)) = kind else { break };
-                        verdict.add_hazard(Hazard {
-                            kind,
-                            side: region.side(),
-                            distance_m: at.max(0.0),
-                        });
-                    }
-                    break;
-                }
+            strip_hazards(strip, region, r, tan_max, vs, verdict);
+        }
+    }
+}
+
+/// Steps and slopes along one strip's seen cells (see [`steps_and_slopes`]).
+fn strip_hazards(
+    strip: &[StripCell],
+    region: Region,
+    r: f32,
+    tan_max: f32,
+    vs: f32,
+    verdict: &mut Verdict,
+) {
+    for (i, a) in strip.iter().enumerate() {
+        let (xi, zi) = (a.x, a.z);
+        for (j, b) in strip.iter().enumerate().skip(i + 1) {
+            let (xj, zj) = (b.x, b.z);
+            let (dx, dz) = (xj - xi, zj - zi);
+            if dz.abs() <= r {
+                continue;
             }
+            if holey(&strip[i..=j]) {
+                break; // unseen ground in between: the gap test judges it
+            }
+            if (dz > 0.0 && a.cut) || (dz < 0.0 && b.cut) {
+                break; // a bound that proves nothing: the view ends here
+            }
+            if dx > 0.0 && dz.abs() >= tan_max * dx {
+                let kind = if dx <= 3.5 * vs {
+                    Some((HazardKind::Step, 0.5 * (xi + xj)))
+                } else if sustained(&strip[i..=j]) {
+                    Some((HazardKind::Slope, xi))
+                } else {
+                    None // flat, then a jump: a step, found from nearer cells
+                };
+                let Some((kind, at)) = kind else { break };
+                verdict.add_hazard(Hazard {
+                    kind,
+                    side: region.side(),
+                    distance_m: at.max(0.0),
+                });
+            }
+            break;
         }
     }
 }
 
 /// Whether consecutive seen cells of a run are more than one cell apart somewhere
 /// (a hole: what lies there is unknown, so no slope or step is measured across it).
-fn holey(run: &[(f32, f32, usize)]) -> bool {
-    run.windows(2).any(|w| w[1].2 > w[0].2 + 1)
+fn holey(run: &[StripCell]) -> bool {
+    run.windows(2).any(|w| w[1].ix > w[0].ix + 1)
 }
 
 /// Whether every cell between the ends lies on the straight line between them
 /// (within [`SLOPE_STRAIGHTNESS_M`]): a slope, not flat ground and a jump.
-fn sustained(run: &[(f32, f32, usize)]) -> bool {
-    let (Some(&(x0, z0, _)), Some(&(x1, z1, _))) = (run.first(), run.last()) else {
+fn sustained(run: &[StripCell]) -> bool {
+    let (Some(a), Some(b)) = (run.first(), run.last()) else {
         return false;
     };
-    let k = (z1 - z0) / (x1 - x0);
+    let k = (b.z - a.z) / (b.x - a.x);
     run.iter()
-        .all(|&(x, z, _)| (z - (z0 + k * (x - x0))).abs() <= SLOPE_STRAIGHTNESS_M)
+        .all(|c| (c.z - (a.z + k * (c.x - a.x))).abs() <= SLOPE_STRAIGHTNESS_M)
 }
 
 /// How far a cell may sit off the line for a run to count as one slope, metres.
@@ -189,8 +241,9 @@ pub fn gaps(f: &Frame, verdict: &mut Verdict) {
             if !f.expected[c] {
                 continue; // outside the view: neither seen nor a gap
             }
-            if f.shadowed[c] {
-                run = None; // a shadow: the cell is hidden by what is in front
+            if f.shadowed[c] || f.beyond[c] {
+                // A shadow or past the horizon: hidden by what is in front.
+                run = None;
                 continue;
             }
             run = Some(match run {
@@ -284,7 +337,15 @@ fn judge_gap(
         return None;
     }
     match after {
-        None => Some(HazardKind::DropOff),
+        None => {
+            // Nothing seen beyond: a drop-off, unless the ground before the gap,
+            // continued at its slope, would be hidden all along by something seen
+            // (ground falling away beyond an edge beside the strip: a sideways shadow).
+            let hidden = unseen
+                .clone()
+                .all(|j| super::visibility::explained(f, j, iy, predicted(s.x_centre(j))));
+            (!hidden).then_some(HazardKind::DropOff)
+        }
         Some((xa, za)) if za < zb - r && za < predicted(xa) - r => Some(HazardKind::DropOff),
         Some((_, za)) => {
             let all_shadowed = unseen

@@ -46,93 +46,22 @@ const FIRST_WINDOW_M: f32 = 0.25;
 /// Least residual tolerance of the face fit, metres.
 const MIN_TOLERANCE_M: f64 = 0.006;
 
-fn status(c: &Cell, threshold: f32) -> Option<Dir> {
-    if c.z > threshold {
-        Some(Dir::Up)
-    } else if c.z < -threshold {
-        Some(Dir::Down)
-    } else {
-        None
-    }
-}
-
-/// The feature of a passable corridor.
-pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) -> Feature {
+/// Step 3: fit the face of the chosen tracks as a plane (see the module doc).
+fn fit_face(
+    f: &Frame,
+    onset: &[Option<Onset>],
+    use_cell: &mut [bool],
+    dir: Dir,
+    use_left: bool,
+    use_right: bool,
+) -> Option<Plane> {
     let s = f.spec;
     let threshold = f.cfg.analysis.rise_threshold_m as f32;
-    // 1. Onsets per track strip.
-    for (iy, slot) in onset.iter_mut().enumerate() {
-        *slot = None;
-        if f.region[iy] == Region::Belly {
-            continue;
-        }
-        let mut pending: Option<Onset> = None;
-        for ix in 0..s.nx {
-            let c = s.cell(ix, iy);
-            if !f.seen[c] {
-                continue;
-            }
-            let st = status(&f.cells[c], threshold);
-            match (pending, st) {
-                (Some(p), Some(d)) if p.dir == d => {
-                    *slot = Some(p);
-                    break;
-                }
-                _ => pending = st.map(|dir| Onset { ix, dir }),
-            }
-        }
-        if slot.is_none() {
-            *slot = pending;
-        }
-    }
-    // 2. Affected tracks.
-    let summary = |region: Region| -> Option<(Dir, usize)> {
-        let (mut seen, mut up, mut down, mut near_up, mut near_down) =
-            (0, 0, 0, usize::MAX, usize::MAX);
-        for iy in f.strips(region) {
-            if (0..s.nx).any(|ix| f.seen[s.cell(ix, iy)]) {
-                seen += 1;
-            }
-            match onset[iy] {
-                Some(Onset { ix, dir: Dir::Up }) => {
-                    up += 1;
-                    near_up = near_up.min(ix);
-                }
-                Some(Onset { ix, dir: Dir::Down }) => {
-                    down += 1;
-                    near_down = near_down.min(ix);
-                }
-                None => {}
-            }
-        }
-        if up > 0 && up >= down && 2 * up >= seen {
-            Some((Dir::Up, near_up))
-        } else if down > 0 && 2 * down >= seen {
-            Some((Dir::Down, near_down))
-        } else {
-            None
-        }
-    };
-    let (left, right) = (summary(Region::Left), summary(Region::Right));
-    let (dir, use_left, use_right) = match (left, right) {
-        (None, None) => return Feature::FLAT,
-        (Some((a, _)), Some((b, _))) if a == b => (a, true, true),
-        (Some((a, _)), None) => (a, true, false),
-        (None, Some((b, _))) => (b, false, true),
-        (Some((a, na)), Some((b, nb))) => {
-            if na <= nb {
-                (a, true, false)
-            } else {
-                (b, false, true)
-            }
-        }
-    };
     let chosen = |iy: usize| match f.region[iy] {
         Region::Left => use_left,
         Region::Right => use_right,
         Region::Belly => false,
     };
-    // 3. Face fit.
     let candidate = |ix: usize, iy: usize| -> bool {
         let c = s.cell(ix, iy);
         chosen(iy)
@@ -214,8 +143,130 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
             break;
         }
     }
-    // 4. Measures.
+    plane
+}
+
+/// Whether two faces fitted to one track each are one face: their heights agree
+/// within [`SAME_FACE_M`] at both track centres, at the distances where they rise.
+fn same_face(l: &Plane, r: &Plane, tc: f64) -> bool {
+    let toe = |p: &Plane, y: f64| -(p.b * y + p.c) / p.a;
+    let x = 0.5 * (toe(l, tc) + toe(r, -tc)) + 0.3;
+    [tc, -tc].iter().all(|&y| {
+        (l.z(x, y) - r.z(x, y)).abs() <= SAME_FACE_M
+            && (l.z(x + 0.3, y) - r.z(x + 0.3, y)).abs() <= SAME_FACE_M
+    })
+}
+
+/// How far two one-track fits of one face may disagree in height, metres.
+const SAME_FACE_M: f64 = 0.03;
+
+fn status(c: &Cell, threshold: f32) -> Option<Dir> {
+    if c.z > threshold {
+        Some(Dir::Up)
+    } else if c.z < -threshold {
+        Some(Dir::Down)
+    } else {
+        None
+    }
+}
+
+/// The feature of a passable corridor.
+pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) -> Feature {
+    let s = f.spec;
+    let threshold = f.cfg.analysis.rise_threshold_m as f32;
+    // 1. Onsets per track strip.
+    for (iy, slot) in onset.iter_mut().enumerate() {
+        *slot = None;
+        if f.region[iy] == Region::Belly {
+            continue;
+        }
+        let mut pending: Option<Onset> = None;
+        for ix in 0..s.nx {
+            let c = s.cell(ix, iy);
+            if !f.seen[c] {
+                continue;
+            }
+            let st = status(&f.cells[c], threshold);
+            match (pending, st) {
+                (Some(p), Some(d)) if p.dir == d => {
+                    *slot = Some(p);
+                    break;
+                }
+                _ => pending = st.map(|dir| Onset { ix, dir }),
+            }
+        }
+        if slot.is_none() {
+            *slot = pending;
+        }
+    }
+    // 2. Affected tracks.
+    let summary = |region: Region| -> Option<(Dir, usize)> {
+        let (mut seen, mut up, mut down, mut near_up, mut near_down) =
+            (0, 0, 0, usize::MAX, usize::MAX);
+        for iy in f.strips(region) {
+            if (0..s.nx).any(|ix| f.seen[s.cell(ix, iy)]) {
+                seen += 1;
+            }
+            match onset[iy] {
+                Some(Onset { ix, dir: Dir::Up }) => {
+                    up += 1;
+                    near_up = near_up.min(ix);
+                }
+                Some(Onset { ix, dir: Dir::Down }) => {
+                    down += 1;
+                    near_down = near_down.min(ix);
+                }
+                None => {}
+            }
+        }
+        if up > 0 && up >= down && 2 * up >= seen {
+            Some((Dir::Up, near_up))
+        } else if down > 0 && 2 * down >= seen {
+            Some((Dir::Down, near_down))
+        } else {
+            None
+        }
+    };
+    let (left, right) = (summary(Region::Left), summary(Region::Right));
+    let (dir, use_left, use_right) = match (left, right) {
+        (None, None) => return Feature::FLAT,
+        (Some((a, _)), Some((b, _))) if a == b => (a, true, true),
+        (Some((a, _)), None) => (a, true, false),
+        (None, Some((b, _))) => (b, false, true),
+        (Some((a, na)), Some((b, nb))) => {
+            if na <= nb {
+                (a, true, false)
+            } else {
+                (b, false, true)
+            }
+        }
+    };
     let tc = 0.5 * (f.cfg.rover.belly_half_width_m + f.cfg.rover.track_outer_m);
+    let (mut use_left, mut use_right) = (use_left, use_right);
+    if use_left && use_right {
+        // Both tracks rise (or fall): one face across both, or a different face
+        // under each? Fit each alone; if they disagree, the nearer one is the feature.
+        let l = fit_face(f, onset, use_cell, dir, true, false);
+        let r = fit_face(f, onset, use_cell, dir, false, true);
+        if let (Some(l), Some(r)) = (l, r) {
+            if !same_face(&l, &r, tc) {
+                let toe = |p: &Plane, y: f64| -(p.b * y + p.c) / p.a;
+                if toe(&l, tc) <= toe(&r, -tc) {
+                    use_right = false;
+                } else {
+                    use_left = false;
+                }
+            }
+        }
+    }
+    let chosen = |iy: usize| match f.region[iy] {
+        Region::Left => use_left,
+        Region::Right => use_right,
+        Region::Belly => false,
+    };
+    let plane = fit_face(f, onset, use_cell, dir, use_left, use_right);
+    let vs = f64::from(s.voxel_m);
+    // 4. Measures.
     let y_ref = match (use_left, use_right) {
         (true, true) => 0.0,
         (true, false) => tc,
@@ -284,8 +335,15 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
         (Dir::Down, true, false) => 9,
         (Dir::Down, _, _) => 10,
     };
+    // The nearest seen ground in the affected strips: a toe before it is not seen.
+    let nearest_seen = (0..s.ny)
+        .filter(|&iy| chosen(iy))
+        .filter_map(|iy| (0..s.nx).find(|&ix| f.seen[s.cell(ix, iy)]))
+        .map(|ix| f64::from(s.x_centre(ix)) - 0.5 * vs)
+        .fold(f64::INFINITY, f64::min);
     Feature {
         workcase,
+        toe_seen: distance >= nearest_seen - vs,
         distance_m: Some(distance as f32),
         gradient_deg: Some(gradient as f32),
         alpha_deg: matches!(workcase, 4 | 6 | 7).then_some(alpha as f32),

@@ -13,7 +13,7 @@ use std::time::Instant;
 use crate::config::Config;
 use crate::grid::{Cell, GridSpec, VoxelGrid};
 use crate::projection::Projector;
-use crate::verdict::{Decision, Hazard, HazardKind, Side, Verdict};
+use crate::verdict::{Decision, Hazard, HazardKind, SeenTo, Side, Verdict};
 use crate::Error;
 
 /// Which lateral band of the corridor a strip of cells lies in.
@@ -38,6 +38,20 @@ impl Region {
     }
 }
 
+/// One seen cell of a track strip, as the step and slope test reads it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct StripCell {
+    /// Mean x of the cell's points, metres.
+    pub x: f32,
+    /// The cell's height, metres: the mean of its points, or for a cell the image's
+    /// top edge cuts through, its top (a lower bound on what stands there).
+    pub z: f32,
+    /// Cell row.
+    pub ix: usize,
+    /// Whether the image's top edge cuts through the cell.
+    pub cut: bool,
+}
+
 /// Per-frame analysis state, sized once from the configuration.
 #[derive(Debug, Clone)]
 pub struct Analyzer {
@@ -51,7 +65,9 @@ pub struct Analyzer {
     // Scratch, reused every frame.
     seen: Vec<bool>,
     shadowed: Vec<bool>,
-    strip: Vec<(f32, f32, usize)>,
+    beyond: Vec<bool>,
+    past: Vec<bool>,
+    strip: Vec<StripCell>,
     values: Vec<f32>,
     track_ref: Vec<[f32; 2]>,
     onset: Vec<Option<feature::Onset>>,
@@ -66,6 +82,14 @@ pub(crate) struct Frame<'a> {
     /// Expected, unseen, and in the shadow of something seen (see
     /// [`visibility::explained`]).
     pub shadowed: &'a [bool],
+    /// Cells at or past the sensor's horizon: the image's top edge cuts through them,
+    /// or through a cell in front of them (along their strip or their line of
+    /// sight). What is seen of them is only what lies below the edge: their height is
+    /// a lower bound.
+    pub past: &'a [bool],
+    /// Expected, unseen, and beyond the sensor's horizon: the line of sight to them
+    /// crosses a cell where the surface leaves the image.
+    pub beyond: &'a [bool],
     pub expected: &'a [bool],
     pub region: &'a [Region],
     pub cfg: &'a Config,
@@ -118,12 +142,51 @@ impl Analyzer {
             paths,
             seen: vec![false; spec.cell_count()],
             shadowed: vec![false; spec.cell_count()],
+            beyond: vec![false; spec.cell_count()],
+            past: vec![false; spec.cell_count()],
             strip: Vec::with_capacity(spec.nx),
             values: Vec::with_capacity(spec.ny),
             track_ref: vec![[f32::NAN; 2]; spec.nx],
             onset: vec![None; spec.ny],
             use_cell: vec![false; spec.cell_count()],
         })
+    }
+
+    /// How far each band is seen: per strip, the near edge of the first expected
+    /// cell past the horizon, or the far edge of its last expected cell; the nearest
+    /// over the band's strips.
+    fn seen_to(&self) -> SeenTo {
+        let s = &self.spec;
+        let mut out = [f32::INFINITY; 3];
+        for iy in 0..s.ny {
+            let mut last = None;
+            let mut to = None;
+            for ix in 0..s.nx {
+                let c = s.cell(ix, iy);
+                if !self.expected[c] {
+                    continue;
+                }
+                if self.past[c] {
+                    to = Some(s.x_centre(ix) - 0.5 * s.voxel_m);
+                    break;
+                }
+                last = Some(s.x_centre(ix) + 0.5 * s.voxel_m);
+            }
+            let k = match self.region[iy] {
+                Region::Left => 0,
+                Region::Belly => 1,
+                Region::Right => 2,
+            };
+            if let Some(x) = to.or(last) {
+                out[k] = out[k].min(x);
+            }
+        }
+        let fin = |v: f32| if v.is_finite() { v } else { 0.0 };
+        SeenTo {
+            left: fin(out[0]),
+            centre: fin(out[1]),
+            right: fin(out[2]),
+        }
     }
 
     /// Cells the camera should see on flat ground, indexed by [`GridSpec::cell`].
@@ -157,15 +220,30 @@ impl Analyzer {
             }
         }
         verdict.seen_fraction = seen_expected as f32 / self.expected_count as f32;
-        // Unseen cells hidden behind something seen: the camera could not see them.
-        let mut shadowed_count = 0usize;
-        for (i, s) in self.shadowed.iter_mut().enumerate() {
-            *s = self.expected[i]
-                && !self.seen[i]
-                && self.paths.shadowed(i, &self.seen, grid.cells());
-            shadowed_count += usize::from(*s);
+        // Unseen cells past the sensor's horizon (the surface left the image in front
+        // of them) and unseen cells hidden behind something seen: the camera could not
+        // see them.
+        let cut = grid.cut();
+        // Past the horizon: a cell the top edge cuts, every cell behind one along its
+        // strip, and every cell whose line of sight crosses one.
+        for iy in 0..self.spec.ny {
+            let mut past = false;
+            for ix in 0..self.spec.nx {
+                let i = self.spec.cell(ix, iy);
+                past |= cut[i];
+                self.past[i] = past || (self.expected[i] && self.paths.crosses(i, cut));
+            }
         }
-        let visible = self.expected_count - shadowed_count;
+        let mut hidden = 0usize;
+        for i in 0..self.shadowed.len() {
+            let unseen = self.expected[i] && !self.seen[i];
+            self.beyond[i] = unseen && self.past[i];
+            self.shadowed[i] =
+                unseen && !self.beyond[i] && self.paths.shadowed(i, &self.seen, grid.cells());
+            hidden += usize::from(self.beyond[i] || self.shadowed[i]);
+        }
+        let visible = self.expected_count - hidden;
+        verdict.seen_to_m = self.seen_to();
         let seen_of_visible = if visible == 0 {
             0.0
         } else {
@@ -176,6 +254,8 @@ impl Analyzer {
             cells: grid.cells(),
             seen: &self.seen,
             shadowed: &self.shadowed,
+            past: &self.past,
+            beyond: &self.beyond,
             expected: &self.expected,
             region: &self.region,
             cfg: &self.cfg,

@@ -117,6 +117,12 @@ impl ShadowPaths {
         ShadowPaths { start, entries }
     }
 
+    /// Whether the line of sight to `cell`'s ground crosses a cell flagged in `flags`.
+    pub fn crosses(&self, cell: usize, flags: &[bool]) -> bool {
+        let (a, b) = (self.start[cell] as usize, self.start[cell + 1] as usize);
+        self.entries[a..b].iter().any(|&(j, _)| flags[j as usize])
+    }
+
     /// Whether the line of sight to `cell`'s ground passes below the top of a seen cell
     /// (within 1 cm).
     pub fn shadowed(&self, cell: usize, seen: &[bool], cells: &[crate::grid::Cell]) -> bool {

@@ -3,13 +3,14 @@
 //! tests, and by the bench.
 
 mod catalogue;
+pub mod families;
 mod noise;
 pub mod random;
 mod terrain;
 
 pub use catalogue::{catalogue, Expectation, Scene, SceneConfig};
 pub use noise::KinectNoise;
-pub use terrain::{Element, Extent, Terrain};
+pub use terrain::{Element, Extent, HeightField, Terrain, ROUGH_WAVES};
 
 use rover_terrain_drivers::DepthFrame;
 
@@ -31,6 +32,8 @@ pub fn render(terrain: &Terrain, config: &Config) -> DepthFrame {
         .map_or(1, |n| n.get())
         .min(8);
     let rows_per = h.div_ceil(threads);
+    let field = terrain.field();
+    let terrain = &field;
     std::thread::scope(|scope| {
         for (chunk_i, chunk) in pixels.chunks_mut(rows_per * w).enumerate() {
             let projector = &projector;
@@ -46,7 +49,7 @@ pub fn render(terrain: &Terrain, config: &Config) -> DepthFrame {
 }
 
 /// The optical depth (mm) at which pixel (u, v)'s ray meets the terrain.
-fn cast(terrain: &Terrain, projector: &Projector, u: usize, v: usize) -> u16 {
+fn cast(terrain: &HeightField, projector: &Projector, u: usize, v: usize) -> u16 {
     let d = projector.ray(u, v);
     let o = projector.point(u, v, 0.0);
     // A margin, so that a surface lying exactly at a bound is inside the interval.

@@ -1,7 +1,7 @@
 use serde::{Deserialize, Serialize};
 
 /// Which part of the width an element covers.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Extent {
     /// The whole width.
@@ -10,14 +10,24 @@ pub enum Extent {
     Left,
     /// Only y ≤ 0 (the right half).
     Right,
+    /// Only `from_m ≤ y ≤ to_m`, metres: an element with vertical side faces along
+    /// those lines (a ramp under one wheel track, ground falling away beside it).
+    Band {
+        /// Right edge (smaller y), metres.
+        from_m: f64,
+        /// Left edge (larger y), metres.
+        to_m: f64,
+    },
 }
 
 impl Extent {
-    fn covers(self, y: f64) -> bool {
+    /// Whether lateral position `y` (metres) is covered.
+    pub fn covers(self, y: f64) -> bool {
         match self {
             Extent::Full => true,
             Extent::Left => y >= 0.0,
             Extent::Right => y <= 0.0,
+            Extent::Band { from_m, to_m } => (from_m..=to_m).contains(&y),
         }
     }
 }
@@ -83,6 +93,39 @@ pub enum Element {
         /// How far the ground falls, metres.
         depth_m: f64,
     },
+    /// Rough natural ground: a smooth random height field (a sum of
+    /// [`ROUGH_WAVES`] plane waves with Gaussian-distributed wave vectors, which gives
+    /// a Gaussian correlation of length `correlation_m`), standard deviation
+    /// `amplitude_m / 2`, clipped to `±amplitude_m`. Deterministic for `seed`.
+    Rough {
+        /// Largest height change either way, metres.
+        amplitude_m: f64,
+        /// Correlation length, metres.
+        correlation_m: f64,
+        /// Random seed of the field.
+        seed: u64,
+    },
+}
+
+/// Plane waves summed by [`Element::Rough`].
+pub const ROUGH_WAVES: usize = 48;
+
+/// One plane wave of a rough field: wave vector (rad/m) and phase (rad).
+fn rough_waves(correlation_m: f64, seed: u64) -> [(f64, f64, f64); ROUGH_WAVES] {
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, Normal};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    // A Gaussian covariance exp(-r²/(2ℓ²)) has a Gaussian spectrum with σ_k = 1/ℓ.
+    let k = Normal::new(0.0, 1.0 / correlation_m.max(1e-3)).expect("finite σ");
+    let mut out = [(0.0, 0.0, 0.0); ROUGH_WAVES];
+    for w in &mut out {
+        *w = (
+            k.sample(&mut rng),
+            k.sample(&mut rng),
+            rand::Rng::gen_range(&mut rng, 0.0..std::f64::consts::TAU),
+        );
+    }
+    out
 }
 
 impl Element {
@@ -154,6 +197,7 @@ impl Element {
                     0.0
                 }
             }
+            Element::Rough { .. } => unreachable!("rough fields are evaluated by Terrain"),
         }
     }
 
@@ -174,6 +218,7 @@ impl Element {
             Element::Step { height_m, .. } => height_m,
             Element::Block { height_m, .. } | Element::Rock { height_m, .. } => height_m,
             Element::DropOff { depth_m, .. } => -depth_m,
+            Element::Rough { amplitude_m, .. } => return (-amplitude_m, amplitude_m),
         };
         (h.min(0.0), h.max(0.0))
     }
@@ -187,6 +232,38 @@ pub struct Terrain {
     pub elements: Vec<Element>,
 }
 
+/// A terrain prepared for many height queries (the rough fields' waves drawn once).
+#[derive(Debug, Clone)]
+pub struct HeightField<'a> {
+    terrain: &'a Terrain,
+    waves: Vec<Option<(f64, [(f64, f64, f64); ROUGH_WAVES])>>,
+}
+
+impl HeightField<'_> {
+    /// Bounds on the height anywhere, metres.
+    pub fn bounds(&self) -> (f64, f64) {
+        self.terrain.bounds()
+    }
+
+    /// Ground height at (x, y), metres, rover frame.
+    pub fn height(&self, x: f64, y: f64) -> f64 {
+        let mut h = 0.0;
+        for (e, w) in self.terrain.elements.iter().zip(&self.waves) {
+            h += match (e, w) {
+                (Element::Rough { amplitude_m, .. }, Some((scale, waves))) => {
+                    let s: f64 = waves
+                        .iter()
+                        .map(|&(kx, ky, p)| (kx * x + ky * y + p).cos())
+                        .sum();
+                    (scale * s).clamp(-amplitude_m, *amplitude_m)
+                }
+                _ => e.height(x, y),
+            };
+        }
+        h
+    }
+}
+
 impl Terrain {
     /// Flat ground.
     pub fn flat() -> Self {
@@ -198,9 +275,34 @@ impl Terrain {
         Terrain { elements }
     }
 
-    /// Ground height at (x, y), metres, rover frame.
+    /// This terrain prepared for many height queries.
+    pub fn field(&self) -> HeightField<'_> {
+        let waves = self
+            .elements
+            .iter()
+            .map(|e| match *e {
+                Element::Rough {
+                    amplitude_m,
+                    correlation_m,
+                    seed,
+                } => {
+                    // σ = amplitude / 2: each wave contributes σ·√(2/N)·cos(…).
+                    let scale = 0.5 * amplitude_m * (2.0 / ROUGH_WAVES as f64).sqrt();
+                    Some((scale, rough_waves(correlation_m, seed)))
+                }
+                _ => None,
+            })
+            .collect();
+        HeightField {
+            terrain: self,
+            waves,
+        }
+    }
+
+    /// Ground height at (x, y), metres, rover frame (prepares the field per call: use
+    /// [`Terrain::field`] for many queries).
     pub fn height(&self, x: f64, y: f64) -> f64 {
-        self.elements.iter().map(|e| e.height(x, y)).sum()
+        self.field().height(x, y)
     }
 
     /// Bounds on the height anywhere, metres.

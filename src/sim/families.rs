@@ -1,0 +1,538 @@
+//! Families of random scenes beyond the catalogue, each drawn with random geometry
+//! and, optionally, a random camera and mount: one-track ramps with vertical side
+//! faces, ramps that rise out of the image, ground falling away beside a track, toes
+//! in the blind zone, rough ground with rock fields, combinations. Each draw carries
+//! the config to render and analyse it with and the verdict it must give.
+//!
+//! Expectations are stated from the geometry alone (the rover's limits and the
+//! drawn terrain), never from what the analysis happens to output. Where the camera
+//! cannot see a feature at all (the toe of a ramp below the image), the draw is kept
+//! inside what the rig sees, so that the expectation stays decidable.
+
+use rand::Rng;
+
+use super::catalogue::Expectation;
+use super::terrain::{Element, Extent, Terrain};
+use crate::config::Config;
+use crate::validate::{Tolerance, CLEAN, NOISY};
+use crate::verdict::{Decision, HazardKind};
+
+/// A family of random scenes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Family {
+    /// A climbable ramp (15-25°) under one wheel track only, straight or diagonal,
+    /// with vertical side faces along the track's edges; unbounded or capped.
+    OneTrackRamp,
+    /// A climbable ramp across the full width that rises out of the top of the image
+    /// before the corridor ends.
+    RampOutOfView,
+    /// The ground beyond one track's inner edge (a half-plane) falls away at 10-15°.
+    HalfPlaneDescent,
+    /// A descent (8-15°, 0.12-0.25 m deep) under one wheel track only: a trench
+    /// with side faces.
+    OneTrackDescent,
+    /// Rough ground (±2.5 cm, correlation 10-20 cm), otherwise flat.
+    RoughFlat,
+    /// Rough ground under a full-width ramp or descent: the workcase and measures
+    /// within the rough-ground tolerance.
+    RoughRamp,
+    /// Pebbles and rocks of 4-9 cm in the tracks, on rough ground: go.
+    RockField,
+    /// The same, with one rock of 15-20 cm in a track among them: stop.
+    RockFieldWithBoulder,
+    /// A rock under the belly: 0.22-0.27 m go, 0.37-0.45 m stop.
+    BellyRock,
+    /// A different climbable ramp under each track: go, the nearer one reported.
+    TwoRamps,
+    /// A rock on a full-width ramp: a 4-8 cm pebble is go, a 15-20 cm rock stop.
+    RockOnRamp,
+}
+
+impl Family {
+    /// Every family, in report order.
+    pub const ALL: [Family; 11] = [
+        Family::OneTrackRamp,
+        Family::RampOutOfView,
+        Family::HalfPlaneDescent,
+        Family::OneTrackDescent,
+        Family::RoughFlat,
+        Family::RoughRamp,
+        Family::RockField,
+        Family::RockFieldWithBoulder,
+        Family::BellyRock,
+        Family::TwoRamps,
+        Family::RockOnRamp,
+    ];
+
+    /// A short name for reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::OneTrackRamp => "one-track ramp",
+            Family::RampOutOfView => "ramp out of view",
+            Family::HalfPlaneDescent => "half-plane descent",
+            Family::OneTrackDescent => "one-track descent",
+            Family::RoughFlat => "rough ground",
+            Family::RoughRamp => "rough ramp",
+            Family::RockField => "rock field",
+            Family::RockFieldWithBoulder => "rock field + boulder",
+            Family::BellyRock => "belly rock",
+            Family::TwoRamps => "two ramps",
+            Family::RockOnRamp => "rock on ramp",
+        }
+    }
+}
+
+/// The camera models the random rigs draw from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CameraModel {
+    /// Kinect v1: 640×480, 57°×43° (the paper's).
+    KinectV1,
+    /// Kinect v2: 512×424, 70.6°×60°.
+    KinectV2,
+    /// A RealSense D435-like pinhole: 848×480, fx ≈ fy ≈ 425, principal point off
+    /// centre.
+    D435,
+    /// A 320×240 camera with the Kinect v1's field of view.
+    Qvga,
+}
+
+/// Where the camera sits and what it is: a [`Config`] with the rover's defaults.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rig {
+    /// The camera model.
+    pub camera: CameraModel,
+    /// The config to render and analyse with.
+    pub config: Config,
+}
+
+impl Rig {
+    /// The default rig: Kinect v1, 0.8 m high, pitched 30° down.
+    pub fn default_rig() -> Rig {
+        Rig {
+            camera: CameraModel::KinectV1,
+            config: Config::default(),
+        }
+    }
+
+    /// A random rig: mount 0.5-1.2 m high, pitched 15-45° down, rolled and yawed
+    /// within ±10°, offset up to 0.3 m forward and ±0.1 m sideways; one of the four
+    /// camera models; minimum range 0.3-0.5 m. Redrawn until the camera sees the
+    /// tracks on flat ground from at most 1.3 m to at least 2.0 m ahead, so that
+    /// features drawn in that span are in view.
+    pub fn random<R: Rng>(rng: &mut R) -> Rig {
+        loop {
+            let mut c = Config::default();
+            let camera = match rng.gen_range(0..4) {
+                0 => CameraModel::KinectV1,
+                1 => CameraModel::KinectV2,
+                2 => CameraModel::D435,
+                _ => CameraModel::Qvga,
+            };
+            match camera {
+                CameraModel::KinectV1 => {}
+                CameraModel::KinectV2 => {
+                    c.camera.width = 512;
+                    c.camera.height = 424;
+                    c.camera.hfov_deg = 70.6;
+                    c.camera.vfov_deg = 60.0;
+                }
+                CameraModel::D435 => {
+                    c.camera.width = 848;
+                    c.camera.height = 480;
+                    let f = rng.gen_range(415.0..435.0);
+                    c.camera.fx = Some(f);
+                    c.camera.fy = Some(f + rng.gen_range(-2.0..2.0));
+                    c.camera.cx = Some(424.0 + rng.gen_range(-20.0..20.0));
+                    c.camera.cy = Some(240.0 + rng.gen_range(-15.0..15.0));
+                    // hfov/vfov are unused with intrinsics; keep them consistent.
+                    c.camera.hfov_deg = 2.0 * (424.0 / f).atan().to_degrees();
+                    c.camera.vfov_deg = 2.0 * (240.0 / f).atan().to_degrees();
+                }
+                CameraModel::Qvga => {
+                    c.camera.width = 320;
+                    c.camera.height = 240;
+                }
+            }
+            c.camera.min_range_m = rng.gen_range(0.3..0.5);
+            c.mount.z_m = rng.gen_range(0.5..1.2);
+            c.mount.pitch_deg = rng.gen_range(15.0..45.0);
+            c.mount.roll_deg = rng.gen_range(-10.0..10.0);
+            c.mount.yaw_deg = rng.gen_range(-10.0..10.0);
+            c.mount.x_m = rng.gen_range(0.0..0.3);
+            c.mount.y_m = rng.gen_range(-0.1..0.1);
+            let (near, far) = footprint(&c);
+            if near <= 1.3 && far >= 2.0 {
+                return Rig { camera, config: c };
+            }
+        }
+    }
+}
+
+/// The forward span in which the camera sees flat ground under both wheel tracks'
+/// centres (the nearest and farthest x seen at y = ±0.45 m), metres. Computed by
+/// projecting ground points: the span where both points are inside the image and
+/// the range limits.
+pub fn footprint(config: &Config) -> (f64, f64) {
+    use nalgebra::Vector3;
+    let p = crate::projection::Projector::new(
+        config,
+        config.camera.width as usize,
+        config.camera.height as usize,
+    );
+    let tc = 0.5 * (config.rover.belly_half_width_m + config.rover.track_outer_m);
+    let (w, h) = (p.width() as f64, p.height() as f64);
+    let visible = |x: f64| {
+        [tc, -tc]
+            .iter()
+            .all(|&y| match p.project(Vector3::new(x, y, 0.0)) {
+                Some((u, v, z)) => {
+                    u >= 0.5
+                        && v >= 0.5
+                        && u <= w - 1.5
+                        && v <= h - 1.5
+                        && z >= config.camera.min_range_m + 0.05
+                        && z <= config.camera.max_range_m - 0.05
+                }
+                None => false,
+            })
+    };
+    let xs: Vec<f64> = (0..=600)
+        .map(|i| i as f64 * 0.01)
+        .filter(|&x| visible(x))
+        .collect();
+    match (xs.first(), xs.last()) {
+        (Some(&a), Some(&b)) => (a, b),
+        _ => (f64::INFINITY, f64::NEG_INFINITY),
+    }
+}
+
+/// One drawn scene.
+#[derive(Debug, Clone)]
+pub struct Draw {
+    /// The family it was drawn from.
+    pub family: Family,
+    /// The terrain.
+    pub terrain: Terrain,
+    /// The rig.
+    pub rig: Rig,
+    /// The verdict it must give.
+    pub expect: Expectation,
+    /// How far its measures may be off, clean and with Kinect v1 noise.
+    pub tolerance: (Tolerance, Tolerance),
+}
+
+/// The bar on rough ground (the issue's: 4 cm and 2°), clean or noisy.
+pub const ROUGH: Tolerance = Tolerance {
+    distance_m: 0.04,
+    gradient_deg: 2.0,
+    alpha_deg: 3.0,
+};
+
+fn go(wc: u8, d: Option<f64>, g: Option<f64>, a: Option<f64>) -> Expectation {
+    Expectation {
+        verdict: Decision::Go,
+        workcase: Some(wc),
+        distance_m: d,
+        gradient_deg: g,
+        alpha_deg: a,
+        hazard: None,
+    }
+}
+
+fn stop(hazard: HazardKind) -> Expectation {
+    Expectation {
+        verdict: Decision::Stop,
+        workcase: None,
+        distance_m: None,
+        gradient_deg: None,
+        alpha_deg: None,
+        hazard: Some(hazard),
+    }
+}
+
+fn stop_any() -> Expectation {
+    Expectation {
+        verdict: Decision::Stop,
+        workcase: None,
+        distance_m: None,
+        gradient_deg: None,
+        alpha_deg: None,
+        hazard: None,
+    }
+}
+
+fn go_any() -> Expectation {
+    Expectation {
+        verdict: Decision::Go,
+        workcase: None,
+        distance_m: None,
+        gradient_deg: None,
+        alpha_deg: None,
+        hazard: None,
+    }
+}
+
+fn ramp(toe: f64, ref_y: f64, g: f64, a: f64, extent: Extent, cap: Option<f64>) -> Element {
+    Element::Ramp {
+        toe_x_m: toe,
+        ref_y_m: ref_y,
+        gradient_deg: g,
+        alpha_deg: a,
+        extent,
+        cap_m: cap,
+    }
+}
+
+fn rough<R: Rng>(rng: &mut R) -> Element {
+    Element::Rough {
+        amplitude_m: 0.025,
+        correlation_m: rng.gen_range(0.1..0.2),
+        seed: rng.gen(),
+    }
+}
+
+/// A toe-line angle: straight (|alpha| ≤ 3°) or clearly diagonal (11-26° either
+/// way), so that the straight/diagonal split (8° by default) is never a coin toss.
+fn toe_angle<R: Rng>(rng: &mut R) -> f64 {
+    if rng.gen_bool(0.4) {
+        rng.gen_range(-3.0..3.0)
+    } else {
+        rng.gen_range(11.0..26.0) * if rng.gen_bool(0.5) { 1.0 } else { -1.0 }
+    }
+}
+
+/// Scatter up to `n` rocks of `h.0..h.1` metres high in the wheel tracks between
+/// `x.0` and `x.1`, each with a ground radius of 1.2-2× its height, none touching
+/// another (heights add up in the renderer: two touching pebbles would make a rock).
+fn rocks<R: Rng>(rng: &mut R, n: usize, h: (f64, f64), x: (f64, f64)) -> Vec<Element> {
+    let mut out: Vec<(f64, f64, f64)> = Vec::new();
+    let mut elements = Vec::new();
+    for _ in 0..n * 20 {
+        if elements.len() == n {
+            break;
+        }
+        let height_m = rng.gen_range(h.0..h.1);
+        let side = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+        let (x_m, y_m) = (rng.gen_range(x.0..x.1), side * rng.gen_range(0.27..0.63));
+        let radius_m = height_m * rng.gen_range(1.2..2.0);
+        if out
+            .iter()
+            .any(|&(px, py, pr)| (px - x_m).hypot(py - y_m) < pr + radius_m + 0.02)
+        {
+            continue;
+        }
+        out.push((x_m, y_m, radius_m));
+        elements.push(Element::Rock {
+            x_m,
+            y_m,
+            radius_m,
+            height_m,
+        });
+    }
+    elements
+}
+
+/// Draw a scene of `family` on `rig`.
+pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
+    let tc = 0.5 * (rig.config.rover.belly_half_width_m + rig.config.rover.track_outer_m);
+    let (bhw, outer) = (
+        rig.config.rover.belly_half_width_m,
+        rig.config.rover.track_outer_m,
+    );
+    let (near, far) = footprint(&rig.config);
+    let diagonal = |a: f64| a.abs() >= rig.config.analysis.diagonal_min_deg;
+    let left = rng.gen_bool(0.5);
+    let s = if left { 1.0 } else { -1.0 };
+    let band = if left {
+        Extent::Band {
+            from_m: bhw,
+            to_m: outer,
+        }
+    } else {
+        Extent::Band {
+            from_m: -outer,
+            to_m: -bhw,
+        }
+    };
+    let half_plane = if left {
+        Extent::Band {
+            from_m: bhw,
+            to_m: 100.0,
+        }
+    } else {
+        Extent::Band {
+            from_m: -100.0,
+            to_m: -bhw,
+        }
+    };
+    // Toes where the rig sees the ground, or just below the image's bottom edge.
+    let toe_span = ((near - 0.15).max(0.45), (far - 0.6).clamp(0.8, 1.8));
+    let (elements, expect) = match family {
+        Family::OneTrackRamp => {
+            let g = rng.gen_range(15.0..25.0);
+            let a = toe_angle(rng) * s;
+            let d = rng.gen_range(toe_span.0..toe_span.1);
+            let cap = rng.gen_bool(0.3).then(|| rng.gen_range(0.2..0.4));
+            let wc = match (left, diagonal(a)) {
+                (true, false) => 3,
+                (true, true) => 4,
+                (false, false) => 5,
+                (false, true) => 6,
+            };
+            (
+                vec![ramp(d, s * tc, g, a, band, cap)],
+                go(wc, Some(d), Some(g), diagonal(a).then_some(a)),
+            )
+        }
+        Family::RampOutOfView => {
+            let g = rng.gen_range(15.0..26.0);
+            let d = rng.gen_range(toe_span.0..toe_span.1);
+            (
+                vec![ramp(d, 0.0, g, 0.0, Extent::Full, None)],
+                go(2, Some(d), Some(g), None),
+            )
+        }
+        Family::HalfPlaneDescent => {
+            let g = -rng.gen_range(10.0..15.0);
+            let d = rng.gen_range(toe_span.0.max(0.9)..toe_span.1.max(1.0));
+            (
+                vec![ramp(d, s * tc, g, 0.0, half_plane, None)],
+                go(if left { 9 } else { 10 }, Some(d), Some(g), None),
+            )
+        }
+        Family::OneTrackDescent => {
+            let g = -rng.gen_range(8.0..15.0);
+            let d = rng.gen_range(toe_span.0.max(0.9)..toe_span.1.max(1.0));
+            let cap = Some(rng.gen_range(0.12..0.25));
+            (
+                vec![ramp(d, s * tc, g, 0.0, band, cap)],
+                go(if left { 9 } else { 10 }, Some(d), Some(g), None),
+            )
+        }
+        Family::RoughFlat => (vec![rough(rng)], go(1, None, None, None)),
+        Family::RoughRamp => {
+            let d = rng.gen_range(toe_span.0.max(0.8)..toe_span.1.max(0.9));
+            let (g, wc) = if rng.gen_bool(0.6) {
+                (rng.gen_range(12.0..25.0), 2)
+            } else {
+                (-rng.gen_range(10.0..15.0), 8)
+            };
+            (
+                vec![rough(rng), ramp(d, 0.0, g, 0.0, Extent::Full, None)],
+                go(wc, Some(d), Some(g), None),
+            )
+        }
+        Family::RockField => {
+            let n = rng.gen_range(3..8);
+            // Pebbles lie on flat or gently rough ground (±1 cm): on ±2.5 cm ground a
+            // 9 cm pebble on a bump beside a dip is a rise of more than a wheel radius.
+            let mut e = vec![Element::Rough {
+                amplitude_m: 0.01,
+                correlation_m: rng.gen_range(0.1..0.2),
+                seed: rng.gen(),
+            }];
+            e.extend(rocks(rng, n, (0.04, 0.09), (near.max(0.6), far.min(2.8))));
+            (e, go_any())
+        }
+        Family::RockFieldWithBoulder => {
+            let n = rng.gen_range(2..6);
+            let mut e = vec![rough(rng)];
+            e.extend(rocks(rng, n, (0.04, 0.09), (near.max(0.6), far.min(2.8))));
+            let height_m = rng.gen_range(0.15..0.2);
+            e.push(Element::Rock {
+                x_m: rng.gen_range(near.max(0.8)..(far - 0.3).clamp(1.0, 2.2)),
+                y_m: s * rng.gen_range(0.35..0.55),
+                radius_m: rng.gen_range(0.15..0.2),
+                height_m,
+            });
+            // A rock is a step or a slope, depending on its shape: either stops.
+            (e, stop_any())
+        }
+        Family::BellyRock => {
+            let tall = rng.gen_bool(0.5);
+            let height_m = if tall {
+                rng.gen_range(0.37..0.45)
+            } else {
+                rng.gen_range(0.22..0.27)
+            };
+            let rock = Element::Rock {
+                x_m: rng.gen_range(near.max(0.9)..(far - 0.3).clamp(1.0, 2.2)),
+                y_m: rng.gen_range(-0.04..0.04),
+                radius_m: rng.gen_range(0.12..0.17),
+                height_m,
+            };
+            let want = if tall {
+                stop(HazardKind::Belly)
+            } else {
+                go(1, None, None, None)
+            };
+            (vec![rock], want)
+        }
+        Family::TwoRamps => {
+            let d1 = rng.gen_range(toe_span.0..toe_span.1);
+            let d2 = d1 + rng.gen_range(0.3..0.6);
+            let (g1, g2) = (rng.gen_range(15.0..25.0), rng.gen_range(10.0..25.0));
+            let other = if left {
+                Extent::Band {
+                    from_m: -outer,
+                    to_m: -bhw,
+                }
+            } else {
+                Extent::Band {
+                    from_m: bhw,
+                    to_m: outer,
+                }
+            };
+            (
+                vec![
+                    ramp(d1, s * tc, g1, 0.0, band, None),
+                    ramp(d2, -s * tc, g2, 0.0, other, None),
+                ],
+                go(if left { 3 } else { 5 }, Some(d1), Some(g1), None),
+            )
+        }
+        Family::RockOnRamp => {
+            let d = rng.gen_range(toe_span.0.max(0.8)..toe_span.1.max(0.9));
+            let big = rng.gen_bool(0.5);
+            // A pebble's front adds to the ramp's rise: keep the two within the
+            // climbable (a 6 cm pebble on an 18° ramp rises 11 cm in 14 cm).
+            let g = rng.gen_range(10.0..18.0);
+            let height_m = if big {
+                rng.gen_range(0.15..0.2)
+            } else {
+                rng.gen_range(0.03..0.06)
+            };
+            let rock = Element::Rock {
+                x_m: d + rng.gen_range(0.2..0.5),
+                y_m: s * rng.gen_range(0.35..0.55),
+                radius_m: if big {
+                    rng.gen_range(0.15..0.2)
+                } else {
+                    height_m * 1.5
+                },
+                height_m,
+            };
+            let want = if big {
+                stop_any()
+            } else {
+                go(2, Some(d), Some(g), None)
+            };
+            (vec![ramp(d, 0.0, g, 0.0, Extent::Full, None), rock], want)
+        }
+    };
+    let rough_ground = elements
+        .iter()
+        .any(|e| matches!(e, Element::Rough { amplitude_m, .. } if *amplitude_m > 0.015))
+        || family == Family::RockOnRamp;
+    Draw {
+        family,
+        terrain: Terrain::new(elements),
+        rig,
+        expect,
+        tolerance: if rough_ground {
+            (ROUGH, ROUGH)
+        } else {
+            (CLEAN, NOISY)
+        },
+    }
+}
