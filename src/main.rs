@@ -150,6 +150,10 @@ enum Command {
         /// Where to write the Markdown report.
         #[arg(long, default_value = "docs/validation.md")]
         out: PathBuf,
+        /// Random scenes per family and rig kind in the report's family sweep
+        /// (0: none, the fixtures only).
+        #[arg(long, default_value_t = rover_terrain::validate::FAMILY_SCENES)]
+        families: usize,
     },
     /// Record depth frames as a libfreenect fakenect session (INDEX.txt, d-*.pgm, device.json)
     /// that our fake camera and libfreenect's fakenect can replay.
@@ -416,9 +420,13 @@ fn run(cli: Cli, service_config: Option<anyhow::Result<Config>>) -> anyhow::Resu
             println!("{line}");
             Ok(ExitCode::SUCCESS)
         }
-        Command::Validate { dir, out } => {
+        Command::Validate { dir, out, families } => {
             let results = validate::run_suite(&dir)?;
-            let report = validate::report(&results);
+            let mut report = validate::report(&results);
+            if families > 0 {
+                let swept = validate::run_families(families, validate::FAMILY_SEED)?;
+                report += &validate::families_report(&swept, families, validate::FAMILY_SEED);
+            }
             if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
                 std::fs::create_dir_all(parent)
                     .with_context(|| format!("creating {}", parent.display()))?;

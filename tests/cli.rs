@@ -358,7 +358,15 @@ fn bench_prints_one_json_line_with_every_stage() {
 fn validate_writes_the_report() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("v.md");
-    let o = run(&["validate", &fixture(""), "--out", out.to_str().unwrap()]);
+    // The family sweep is tested in tests/generality.rs; here the fixtures only.
+    let o = run(&[
+        "validate",
+        &fixture(""),
+        "--out",
+        out.to_str().unwrap(),
+        "--families",
+        "0",
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&out).unwrap();
     assert!(

@@ -35,7 +35,8 @@ pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<StripCell>, verdict: &mut Ver
     for region in [Region::Left, Region::Right] {
         for iy in f.strips(region) {
             strip.clear();
-            let mut last: Option<f32> = None;
+            // The last two chosen (x, z): the strip's height and slope so far.
+            let mut last: [Option<(f32, f32)>; 2] = [None, None];
             for ix in 0..f.spec.nx {
                 let c = f.spec.cell(ix, iy);
                 if !f.seen[c] {
@@ -46,15 +47,23 @@ pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<StripCell>, verdict: &mut Ver
                 let z = if cut {
                     cell.top.max(cell.z)
                 } else {
-                    // Of a cell's two surfaces, the one that continues the strip.
-                    let near = last.unwrap_or(cell.foot);
+                    // Of a cell's two surfaces, the one that continues the strip
+                    // (its last height carried on at its slope, up to passable).
+                    let near = match last {
+                        [Some((x0, z0)), Some((x1, z1))] if x1 > x0 => {
+                            let k = ((z1 - z0) / (x1 - x0)).clamp(-tan_max, tan_max);
+                            z1 + k * (cell.x - x1)
+                        }
+                        [_, Some((_, z1))] => z1,
+                        _ => cell.foot,
+                    };
                     if (cell.crest - near).abs() <= (cell.foot - near).abs() {
                         cell.crest
                     } else {
                         cell.foot
                     }
                 };
-                last = Some(z);
+                last = [last[1], Some((cell.x, z))];
                 strip.push(StripCell {
                     x: cell.x,
                     z,
@@ -133,7 +142,10 @@ const SLOPE_STRAIGHTNESS_M: f32 = 0.03;
 /// Anything under the belly taller than the belly clearance above the higher of the
 /// two wheel tracks at the same distance (the median height of each track's cells in
 /// that row; a row with no track data borrows the nearest row within 3 cells, else
-/// the ground plane z = 0).
+/// the ground plane z = 0, unless the track there is past the sensor's horizon: then
+/// the row is beyond view and not judged). A belly cell beside a track is also
+/// measured against that track cell's upper surface: a face along the band edge is
+/// the side of what stands in the track.
 pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdict: &mut Verdict) {
     let clearance = f.cfg.rover.belly_clearance_m as f32;
     let s = f.spec;
@@ -151,22 +163,42 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
     }
     for ix in 0..s.nx {
         let mut reference = f32::NEG_INFINITY;
-        for k in 0..2 {
+        let mut beyond_view = false;
+        for (k, region) in [Region::Left, Region::Right].into_iter().enumerate() {
             let near = (0..=3usize)
                 .flat_map(|d| [ix.checked_sub(d), Some(ix + d)])
                 .flatten()
                 .filter_map(|j| track_ref.get(j).map(|r| r[k]))
                 .find(|v| !v.is_nan());
-            if let Some(v) = near {
-                reference = reference.max(v);
+            match near {
+                Some(v) => reference = reference.max(v),
+                // No track data near this row because the track is past the horizon:
+                // how high the wheels stand here is not known.
+                None => beyond_view |= f.strips(region).any(|iy| f.past[s.cell(ix, iy)]),
             }
+        }
+        if beyond_view {
+            continue;
         }
         if reference == f32::NEG_INFINITY {
             reference = 0.0;
         }
         for iy in f.strips(Region::Belly) {
             let c = s.cell(ix, iy);
-            if f.seen[c] && f.cells[c].top - reference > clearance {
+            if !f.seen[c] {
+                continue;
+            }
+            // Beside a track, the band's edge cells hold the side face of whatever
+            // stands in the track: it is as high as the track there, not under the belly.
+            let beside = [iy.checked_sub(1), Some(iy + 1)]
+                .into_iter()
+                .flatten()
+                .filter(|&j| j < s.ny && f.region[j] != Region::Belly)
+                .map(|j| s.cell(ix, j))
+                .filter(|&j| f.seen[j])
+                .map(|j| f.cells[j].crest)
+                .fold(reference, f32::max);
+            if f.cells[c].top - beside > clearance {
                 verdict.add_hazard(Hazard {
                     kind: HazardKind::Belly,
                     side: Region::Belly.side(),

@@ -123,6 +123,148 @@ mod tests {
         assert!(f.pixels().iter().all(|&d| d == 0 || d >= 800));
     }
 
+    /// Depth (mm) at which pixel (u, v)'s ray meets the plane `n·p = k`, by hand.
+    fn hand_depth(p: &Projector, u: usize, v: usize, n: [f64; 3], k: f64) -> f64 {
+        let (o, d) = (p.point(u, v, 0.0), p.ray(u, v));
+        let t =
+            (k - (n[0] * o.x + n[1] * o.y + n[2] * o.z)) / (n[0] * d.x + n[1] * d.y + n[2] * d.z);
+        t * 1000.0
+    }
+
+    fn small(mut c: Config) -> Config {
+        c.camera.width = 96;
+        c.camera.height = 72;
+        c
+    }
+
+    #[test]
+    fn flat_ground_on_any_mount_and_camera_matches_the_hand_calculation() {
+        let mut c = small(Config::default());
+        c.mount.z_m = 1.1;
+        c.mount.pitch_deg = 38.0;
+        c.mount.roll_deg = -8.0;
+        c.mount.yaw_deg = 9.0;
+        c.mount.x_m = 0.2;
+        c.mount.y_m = -0.07;
+        for pinhole in [false, true] {
+            if pinhole {
+                // D435-like: off-centre principal point, unequal focal lengths.
+                c.camera.fx = Some(48.0);
+                c.camera.fy = Some(47.0);
+                c.camera.cx = Some(52.0);
+                c.camera.cy = Some(31.0);
+            }
+            let f = render(&Terrain::flat(), &c);
+            let p = Projector::new(&c, 96, 72);
+            let mut checked = 0;
+            for (u, v) in [(0, 71), (48, 40), (95, 60), (10, 30), (80, 71)] {
+                let want = hand_depth(&p, u, v, [0.0, 0.0, 1.0], 0.0);
+                let got = f64::from(f.pixels()[v * 96 + u]);
+                if want > 0.0 && want < FAR_M * 1000.0 {
+                    assert!((got - want).abs() <= 1.0, "({u},{v}) {got} vs {want}");
+                    checked += 1;
+                }
+            }
+            assert!(checked >= 4);
+        }
+    }
+
+    #[test]
+    fn a_ramp_and_a_side_face_are_hit_where_the_hand_calculation_says() {
+        let c = small(Config::default());
+        let p = Projector::new(&c, 96, 72);
+        // A diagonal ramp: z = tan g·((x − toe)cos a + (y − y0)sin a) past the toe.
+        let (toe, y0, g, a) = (1.1_f64, 0.45_f64, 20.0_f64, 15.0_f64);
+        let t = Terrain::new(vec![Element::Ramp {
+            toe_x_m: toe,
+            ref_y_m: y0,
+            gradient_deg: g,
+            alpha_deg: a,
+            extent: Extent::Full,
+            cap_m: None,
+        }]);
+        let f = render(&t, &c);
+        let (tg, (sa, ca)) = (g.to_radians().tan(), a.to_radians().sin_cos());
+        let n = [-tg * ca, -tg * sa, 1.0];
+        let k = -tg * (toe * ca + y0 * sa);
+        let mut on_face = 0;
+        for v in (0..72).step_by(7) {
+            for u in (0..96).step_by(9) {
+                let got = f64::from(f.pixels()[v * 96 + u]);
+                let hit = p.point(u, v, got / 1000.0);
+                let across = (hit.x - toe) * ca + (hit.y - y0) * sa;
+                if got > 0.0 && across > 0.02 {
+                    let want = hand_depth(&p, u, v, n, k);
+                    assert!((got - want).abs() <= 1.0, "({u},{v}) {got} vs {want}");
+                    on_face += 1;
+                }
+            }
+        }
+        assert!(on_face > 10);
+        // A 1 m wall along y = 0.2 (a band's side face): rays to its left hit the
+        // plane y = 0.2 where the hit lies on the face.
+        let t = Terrain::new(vec![Element::Step {
+            x_m: 0.0,
+            height_m: 1.0,
+            extent: Extent::Band {
+                from_m: 0.2,
+                to_m: 5.0,
+            },
+        }]);
+        let f = render(&t, &c);
+        let mut on_wall = 0;
+        for v in 0..72 {
+            for u in 0..96 {
+                let want = hand_depth(&p, u, v, [0.0, 1.0, 0.0], 0.2);
+                if want <= 0.0 {
+                    continue;
+                }
+                let hit = p.point(u, v, want / 1000.0);
+                if hit.z > 0.01 && hit.z < 0.99 && hit.x > 0.0 && p.ray(u, v).y > 0.0 {
+                    let got = f64::from(f.pixels()[v * 96 + u]);
+                    assert!((got - want).abs() <= 1.0, "({u},{v}) {got} vs {want}");
+                    on_wall += 1;
+                }
+            }
+        }
+        assert!(on_wall > 50, "{on_wall}");
+    }
+
+    #[test]
+    fn rough_ground_has_the_stated_amplitude_and_correlation() {
+        let (amp, ell) = (0.025, 0.15);
+        let t = Terrain::new(vec![Element::Rough {
+            amplitude_m: amp,
+            correlation_m: ell,
+            seed: 7,
+        }]);
+        let field = t.field();
+        let pts: Vec<(f64, f64)> = (0..120)
+            .flat_map(|i| (0..60).map(move |j| (i as f64 * 0.025, j as f64 * 0.025 - 0.75)))
+            .collect();
+        let h: Vec<f64> = pts.iter().map(|&(x, y)| field.height(x, y)).collect();
+        let n = h.len() as f64;
+        let mean = h.iter().sum::<f64>() / n;
+        let sd = (h.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
+        assert!(h.iter().all(|v| v.abs() <= amp + 1e-12));
+        assert!(mean.abs() < 0.3 * amp, "mean {mean}");
+        assert!((0.3 * amp..0.6 * amp).contains(&sd), "sd {sd}");
+        // Correlation at a lag of one correlation length: exp(−1/2) ≈ 0.61 for a
+        // Gaussian covariance; at four lengths, about nothing.
+        let corr = |lag: f64| {
+            let pairs: Vec<(f64, f64)> = pts
+                .iter()
+                .filter(|&&(x, _)| x + lag < 3.0)
+                .map(|&(x, y)| (field.height(x, y) - mean, field.height(x + lag, y) - mean))
+                .collect();
+            pairs.iter().map(|(a, b)| a * b).sum::<f64>() / pairs.len() as f64 / (sd * sd)
+        };
+        assert!((0.4..0.8).contains(&corr(ell)), "corr(ℓ) {}", corr(ell));
+        assert!(corr(4.0 * ell).abs() < 0.25, "corr(4ℓ) {}", corr(4.0 * ell));
+        // The same seed draws the same ground.
+        assert_eq!(t.height(1.234, 0.321), t.clone().height(1.234, 0.321));
+    }
+
     #[test]
     fn a_wall_is_hit_at_its_face() {
         let mut c = Config::default();
