@@ -1,5 +1,7 @@
 //! Debug aid: print the ground-cell grid of one rendered scene (JSON terrain element
-//! on the command line), seen cells as heights in cm, unseen expected cells as `?`.
+//! on the command line), seen cells as heights in cm (`^` where the image's top edge
+//! cuts the cell), unseen expected cells as `?`. With `STRIP=IY` in the environment,
+//! also every cell of strip IY: mean, top, low, crest and foot heights, cut or not.
 use rover_terrain::sim::{self, Element, Terrain};
 use rover_terrain::{Config, Pipeline};
 
@@ -67,6 +69,3 @@ fn main() {
         }
     }
 }
-
-#[allow(dead_code)]
-fn unused() {}

@@ -128,8 +128,8 @@ pub struct Cell {
     /// Highest voxel centroid with at least [`TOP_MIN_POINTS`] points, metres.
     pub top: f32,
     /// Lowest voxel centroid with at least [`TOP_MIN_POINTS`] points, metres. Far
-    /// below `top` (see [`Cell::split`]) when the cell holds a vertical face: two
-    /// surfaces, the face's foot and its crest.
+    /// below `top` when the cell holds a vertical face: two surfaces, the face's foot
+    /// and its crest.
     pub low: f32,
     /// Mean height of the points within [`SURFACE_BAND`] voxels of `top`: the upper
     /// surface of the cell, without the points of a face below it, metres. Equal to
@@ -162,23 +162,10 @@ impl Cell {
         crest: 0.0,
         foot: 0.0,
     };
-
-    /// Whether the cell holds two surfaces: its lowest and highest voxels lie at
-    /// least [`SPLIT_M`] apart (a vertical face inside the cell: a band edge, the
-    /// front of a step or rock).
-    #[inline]
-    pub fn split(&self) -> bool {
-        self.top - self.low >= SPLIT_M
-    }
 }
 
-/// Height between a cell's lowest and highest voxel that makes it hold a vertical
-/// face, metres (two voxels at the default 5 cm: more than noise spreads one
-/// surface over within a cell).
-pub const SPLIT_M: f32 = 0.095;
-
 /// Image rows, from the top, whose points mark the cells where the view is cut
-/// ([`VoxelGrid::mark_cut`]); two, so that one dropped pixel does not hide a cut.
+/// ([`VoxelGrid::cut`]); two, so that one dropped pixel does not hide a cut.
 pub const CUT_ROWS: usize = 2;
 
 /// Voxels with fewer points than this do not count for a column's top (one stray
@@ -355,54 +342,13 @@ impl VoxelGrid {
         &self.cells
     }
 
-    /// Ground cells the image's top edge cuts through, indexed by [`GridSpec::cell`]
-    /// (see [`VoxelGrid::mark_cut`]).
+    /// Ground cells the image's top edge cuts through in the last frame, indexed by
+    /// [`GridSpec::cell`]: those the points of the top [`CUT_ROWS`] rows fall in. There
+    /// the surface leaves the field of view, so what the cell holds is only the lower
+    /// part of what stands there (its height is a lower bound), and the ground beyond
+    /// it along the line of sight is beyond view.
     pub fn cut(&self) -> &[bool] {
         &self.cut
-    }
-
-    /// Mark the ground cells that points of the image's top [`CUT_ROWS`] rows fall in:
-    /// there the surface leaves the field of view, so what the cell holds is only the
-    /// lower part of what stands there (its height is a lower bound) and the ground
-    /// beyond it along the line of sight is beyond view. `depth` is the whole image.
-    pub fn mark_cut(&mut self, projector: &Projector, depth: &[u16], min_mm: u16, max_mm: u16) {
-        for &c in &self.touched_cut {
-            self.cut[c as usize] = false;
-        }
-        self.touched_cut.clear();
-        let s = self.spec;
-        let o = projector.origin();
-        let width = projector.width();
-        let top = s.origin[2] + s.nz as f32 * s.voxel_m;
-        for (row, pixels) in projector
-            .row_table()
-            .iter()
-            .zip(depth.chunks_exact(width))
-            .take(CUT_ROWS)
-        {
-            for (col, &d) in projector.col_table().iter().zip(pixels) {
-                if d < min_mm.max(1) || d > max_mm {
-                    continue;
-                }
-                let z = f32::from(d) * 0.001;
-                let p = [
-                    o[0] + z * (col[0] + row[0]),
-                    o[1] + z * (col[1] + row[1]),
-                    o[2] + z * (col[2] + row[2]),
-                ];
-                if p[2] < s.origin[2] || p[2] >= top {
-                    continue;
-                }
-                if let Some((ix, iy)) = s.cell_at(p[0], p[1]) {
-                    let c = s.cell(ix, iy);
-                    if !self.cut[c] {
-                        self.cut[c] = true;
-                        // Capacity is the cell count: never reallocates.
-                        self.touched_cut.push(c as u32);
-                    }
-                }
-            }
-        }
     }
 
     /// Project, transform and bin one depth image (`projector`'s size) in one pass.
@@ -424,6 +370,10 @@ impl VoxelGrid {
             self.acc[i as usize] = Acc::default();
         }
         self.touched.clear();
+        for &c in &self.touched_cut {
+            self.cut[c as usize] = false;
+        }
+        self.touched_cut.clear();
         let s = self.spec;
         let inv = 1.0 / s.voxel_m;
         let o = projector.origin();
@@ -446,7 +396,12 @@ impl VoxelGrid {
         }
         let mut stats = BinStats::default();
         let min_mm = min_mm.max(1);
-        for (row, pixels) in projector.row_table().iter().zip(depth.chunks_exact(width)) {
+        for (v, (row, pixels)) in projector
+            .row_table()
+            .iter()
+            .zip(depth.chunks_exact(width))
+            .enumerate()
+        {
             let r = [row[0] * inv, row[1] * inv, row[2] * inv];
             let rb = &mut self.row;
             let valid = index_row(
@@ -463,6 +418,17 @@ impl VoxelGrid {
                 rb,
             );
             stats.points_in += valid;
+            if v < CUT_ROWS {
+                // The top rows' points mark the cells where the view is cut.
+                for &i in rb.idx.iter().filter(|&&i| i != u32::MAX) {
+                    let c = i as usize / s.nz;
+                    if !self.cut[c] {
+                        self.cut[c] = true;
+                        // Capacity is the cell count: never reallocates.
+                        self.touched_cut.push(c as u32);
+                    }
+                }
+            }
             // Merge runs of pixels in the same voxel.
             let mut cur = u32::MAX;
             let mut run = Acc::default();

@@ -128,8 +128,6 @@ impl Pipeline {
             .bin(&self.projector, frame.pixels(), self.min_mm, self.max_mm);
         let t1 = Instant::now();
         self.grid.emit();
-        self.grid
-            .mark_cut(&self.projector, frame.pixels(), self.min_mm, self.max_mm);
         let t2 = Instant::now();
         v.points_in = stats.points_in;
         v.points_binned = stats.points_binned;

@@ -16,17 +16,6 @@ fn analyse(elements: Vec<Element>, config: &Config) -> Verdict {
         .clone()
 }
 
-fn ramp(toe: f64, ref_y: f64, g: f64, a: f64, extent: Extent) -> Element {
-    Element::Ramp {
-        toe_x_m: toe,
-        ref_y_m: ref_y,
-        gradient_deg: g,
-        alpha_deg: a,
-        extent,
-        cap_m: None,
-    }
-}
-
 const LEFT_TRACK: Extent = Extent::Band {
     from_m: 0.2,
     to_m: 0.7,
@@ -54,17 +43,20 @@ fn assert_go(v: &Verdict, wc: u8, d: f64, g: f64, alpha: Option<f64>) {
 fn a_climbable_ramp_under_one_track_rising_out_of_view_is_go() {
     let c = Config::default();
     for (g, toe) in [(15.0, 0.9), (20.0, 1.2), (25.0, 1.6)] {
-        let v = analyse(vec![ramp(toe, 0.45, g, 0.0, LEFT_TRACK)], &c);
+        let v = analyse(vec![Element::ramp(toe, 0.45, g, 0.0, LEFT_TRACK)], &c);
         assert_go(&v, 3, toe, g, None);
         // The ramp leaves the top of the image before the corridor ends: the left
         // track is seen only that far, the belly band farther.
         assert!(v.seen_to_m.left < 2.9, "{:?}", v.seen_to_m);
-        let v = analyse(vec![ramp(toe, -0.45, g, 0.0, RIGHT_TRACK)], &c);
+        let v = analyse(vec![Element::ramp(toe, -0.45, g, 0.0, RIGHT_TRACK)], &c);
         assert_go(&v, 5, toe, g, None);
     }
-    let v = analyse(vec![ramp(1.1, 0.45, 20.0, 20.0, LEFT_TRACK)], &c);
+    let v = analyse(vec![Element::ramp(1.1, 0.45, 20.0, 20.0, LEFT_TRACK)], &c);
     assert_go(&v, 4, 1.1, 20.0, Some(20.0));
-    let v = analyse(vec![ramp(1.1, -0.45, 18.0, -15.0, RIGHT_TRACK)], &c);
+    let v = analyse(
+        vec![Element::ramp(1.1, -0.45, 18.0, -15.0, RIGHT_TRACK)],
+        &c,
+    );
     assert_go(&v, 6, 1.1, 18.0, Some(-15.0));
 }
 
@@ -84,7 +76,7 @@ fn ground_falling_away_beyond_a_tracks_inner_edge_is_go() {
                     to_m: -0.2,
                 }
             };
-            let v = analyse(vec![ramp(toe, side * 0.45, g, 0.0, half)], &c);
+            let v = analyse(vec![Element::ramp(toe, side * 0.45, g, 0.0, half)], &c);
             assert_go(&v, wc, toe, g, None);
         }
     }
@@ -96,12 +88,12 @@ fn a_toe_below_the_image_is_measured_from_the_face_and_flagged() {
     // from about 0.64 m, the toe is at 0.474 m.
     let c = Config::default();
     for extent in [Extent::Left, LEFT_TRACK] {
-        let v = analyse(vec![ramp(0.474, 0.45, 20.0, 0.0, extent)], &c);
+        let v = analyse(vec![Element::ramp(0.474, 0.45, 20.0, 0.0, extent)], &c);
         assert_go(&v, 3, 0.474, 20.0, None);
         assert!(!v.feature.unwrap().toe_seen);
     }
     // A toe in view is flagged as seen.
-    let v = analyse(vec![ramp(1.2, 0.45, 20.0, 0.0, LEFT_TRACK)], &c);
+    let v = analyse(vec![Element::ramp(1.2, 0.45, 20.0, 0.0, LEFT_TRACK)], &c);
     assert!(v.feature.unwrap().toe_seen);
 }
 
@@ -124,7 +116,7 @@ fn faces_on_and_beside_every_band_boundary_lift_nothing() {
                     to_m: -inner,
                 }
             };
-            let v = analyse(vec![ramp(1.2, side * 0.45, 18.0, 0.0, band)], &c);
+            let v = analyse(vec![Element::ramp(1.2, side * 0.45, 18.0, 0.0, band)], &c);
             assert_eq!(
                 v.decision,
                 Decision::Go,
@@ -154,7 +146,7 @@ fn the_impassable_versions_still_stop() {
     let stops = [
         // A 35° ramp under one track.
         (
-            vec![ramp(1.2, 0.45, 35.0, 0.0, LEFT_TRACK)],
+            vec![Element::ramp(1.2, 0.45, 35.0, 0.0, LEFT_TRACK)],
             HazardKind::Slope,
         ),
         // A 15 cm step under one track only.
@@ -181,7 +173,7 @@ fn the_impassable_versions_still_stop() {
         ),
         // A descent steeper than the rover can take, beside the belly band.
         (
-            vec![ramp(
+            vec![Element::ramp(
                 1.2,
                 -0.45,
                 -40.0,

@@ -43,8 +43,8 @@ pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<StripCell>, verdict: &mut Ver
                     continue;
                 }
                 let cell = &f.cells[c];
-                let cut = f.past[c];
-                let z = if cut {
+                let past = f.past[c];
+                let z = if past {
                     cell.top.max(cell.z)
                 } else {
                     // Of a cell's two surfaces, the one that continues the strip
@@ -68,7 +68,7 @@ pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<StripCell>, verdict: &mut Ver
                     x: cell.x,
                     z,
                     ix,
-                    cut,
+                    past,
                 });
             }
             strip_hazards(strip, region, r, tan_max, vs, verdict);
@@ -96,7 +96,7 @@ fn strip_hazards(
             if holey(&strip[i..=j]) {
                 break; // unseen ground in between: the gap test judges it
             }
-            if (dz > 0.0 && a.cut) || (dz < 0.0 && b.cut) {
+            if (dz > 0.0 && a.past) || (dz < 0.0 && b.past) {
                 break; // a bound that proves nothing: the view ends here
             }
             if dx > 0.0 && dz.abs() >= tan_max * dx {

@@ -46,6 +46,15 @@ const FIRST_WINDOW_M: f32 = 0.25;
 /// Least residual tolerance of the face fit, metres.
 const MIN_TOLERANCE_M: f64 = 0.006;
 
+/// Whether strips of `region` take part when the left and/or right track is used.
+fn chosen(region: Region, use_left: bool, use_right: bool) -> bool {
+    match region {
+        Region::Left => use_left,
+        Region::Right => use_right,
+        Region::Belly => false,
+    }
+}
+
 /// Step 3: fit the face of the chosen tracks as a plane (see the module doc).
 fn fit_face(
     f: &Frame,
@@ -57,11 +66,7 @@ fn fit_face(
 ) -> Option<Plane> {
     let s = f.spec;
     let threshold = f.cfg.analysis.rise_threshold_m as f32;
-    let chosen = |iy: usize| match f.region[iy] {
-        Region::Left => use_left,
-        Region::Right => use_right,
-        Region::Belly => false,
-    };
+    let chosen = |iy: usize| chosen(f.region[iy], use_left, use_right);
     let candidate = |ix: usize, iy: usize| -> bool {
         let c = s.cell(ix, iy);
         chosen(iy)
@@ -149,8 +154,7 @@ fn fit_face(
 /// Whether two faces fitted to one track each are one face: their heights agree
 /// within [`SAME_FACE_M`] at both track centres, at the distances where they rise.
 fn same_face(l: &Plane, r: &Plane, tc: f64) -> bool {
-    let toe = |p: &Plane, y: f64| -(p.b * y + p.c) / p.a;
-    let x = 0.5 * (toe(l, tc) + toe(r, -tc)) + 0.3;
+    let x = 0.5 * (l.toe_x(tc) + r.toe_x(-tc)) + 0.3;
     [tc, -tc].iter().all(|&y| {
         (l.z(x, y) - r.z(x, y)).abs() <= SAME_FACE_M
             && (l.z(x + 0.3, y) - r.z(x + 0.3, y)).abs() <= SAME_FACE_M
@@ -250,8 +254,7 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
         let r = fit_face(f, onset, use_cell, dir, false, true);
         if let (Some(l), Some(r)) = (l, r) {
             if !same_face(&l, &r, tc) {
-                let toe = |p: &Plane, y: f64| -(p.b * y + p.c) / p.a;
-                if toe(&l, tc) <= toe(&r, -tc) {
+                if l.toe_x(tc) <= r.toe_x(-tc) {
                     use_right = false;
                 } else {
                     use_left = false;
@@ -259,11 +262,7 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
             }
         }
     }
-    let chosen = |iy: usize| match f.region[iy] {
-        Region::Left => use_left,
-        Region::Right => use_right,
-        Region::Belly => false,
-    };
+    let chosen = |iy: usize| chosen(f.region[iy], use_left, use_right);
     let plane = fit_face(f, onset, use_cell, dir, use_left, use_right);
     let vs = f64::from(s.voxel_m);
     // 4. Measures.
@@ -276,7 +275,7 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
     let sloped = plane.filter(|p| p.a * sign > 0.0 && p.gradient_deg() >= MIN_FACE_DEG);
     let (distance, gradient, alpha) = match sloped {
         Some(p) => (
-            -(p.b * y_ref + p.c) / p.a,
+            p.toe_x(y_ref),
             sign * p.gradient_deg(),
             (p.b / p.a).atan().to_degrees(),
         ),

@@ -43,13 +43,14 @@ impl Region {
 pub(crate) struct StripCell {
     /// Mean x of the cell's points, metres.
     pub x: f32,
-    /// The cell's height, metres: the mean of its points, or for a cell the image's
-    /// top edge cuts through, its top (a lower bound on what stands there).
+    /// The cell's height, metres: the one of its surfaces (crest or foot) that
+    /// continues the strip, or for a cell past the horizon its top (a lower bound on
+    /// what stands there).
     pub z: f32,
     /// Cell row.
     pub ix: usize,
-    /// Whether the image's top edge cuts through the cell.
-    pub cut: bool,
+    /// Whether the cell is at or past the sensor's horizon ([`Frame::past`]).
+    pub past: bool,
 }
 
 /// Per-frame analysis state, sized once from the configuration.
@@ -225,13 +226,15 @@ impl Analyzer {
         // see them.
         let cut = grid.cut();
         // Past the horizon: a cell the top edge cuts, every cell behind one along its
-        // strip, and every cell whose line of sight crosses one.
+        // strip, and every cell whose line of sight crosses one. Most frames cut no
+        // cell (the top rows look past the corridor): then nothing is past.
+        let any_cut = cut.contains(&true);
         for iy in 0..self.spec.ny {
             let mut past = false;
             for ix in 0..self.spec.nx {
                 let i = self.spec.cell(ix, iy);
                 past |= cut[i];
-                self.past[i] = past || (self.expected[i] && self.paths.crosses(i, cut));
+                self.past[i] = past || (any_cut && self.expected[i] && self.paths.crosses(i, cut));
             }
         }
         let mut hidden = 0usize;

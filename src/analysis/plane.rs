@@ -32,6 +32,13 @@ impl Plane {
         self.a * x + self.b * y + self.c
     }
 
+    /// Where the plane meets the ground z = 0 at lateral position `y`: the toe
+    /// line's x there, metres (infinite for a plane with no slope along x).
+    #[inline]
+    pub fn toe_x(&self, y: f64) -> f64 {
+        -(self.b * y + self.c) / self.a
+    }
+
     /// The steepest slope of the plane, degrees (always ≥ 0).
     pub fn gradient_deg(&self) -> f64 {
         self.a.hypot(self.b).atan().to_degrees()

@@ -56,17 +56,6 @@ pub struct Scene {
     pub noisy_seed: Option<u64>,
 }
 
-fn ramp(toe_x_m: f64, ref_y_m: f64, gradient_deg: f64, alpha_deg: f64, extent: Extent) -> Element {
-    Element::Ramp {
-        toe_x_m,
-        ref_y_m,
-        gradient_deg,
-        alpha_deg,
-        extent,
-        cap_m: None,
-    }
-}
-
 fn go(workcase: u8, d: Option<f64>, g: Option<f64>, a: Option<f64>) -> Expectation {
     Expectation {
         verdict: Decision::Go,
@@ -93,6 +82,7 @@ fn halt(verdict: Decision, hazard: HazardKind) -> Expectation {
 /// the impassable cases, passable edge cases, a drop-off, and frames with no data.
 pub fn catalogue() -> Vec<Scene> {
     use Extent::{Full, Left, Right};
+    let ramp = Element::ramp;
     let tc = 0.45; // centre of a wheel track, metres
     let scene = |name, description, terrain: Vec<Element>, expect, noisy_seed| Scene {
         name,

@@ -272,17 +272,6 @@ fn go_any() -> Expectation {
     }
 }
 
-fn ramp(toe: f64, ref_y: f64, g: f64, a: f64, extent: Extent, cap: Option<f64>) -> Element {
-    Element::Ramp {
-        toe_x_m: toe,
-        ref_y_m: ref_y,
-        gradient_deg: g,
-        alpha_deg: a,
-        extent,
-        cap_m: cap,
-    }
-}
-
 fn rough<R: Rng>(rng: &mut R) -> Element {
     Element::Rough {
         amplitude_m: 0.025,
@@ -343,17 +332,21 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
     let diagonal = |a: f64| a.abs() >= rig.config.analysis.diagonal_min_deg;
     let left = rng.gen_bool(0.5);
     let s = if left { 1.0 } else { -1.0 };
-    let band = if left {
-        Extent::Band {
-            from_m: bhw,
-            to_m: outer,
-        }
-    } else {
-        Extent::Band {
-            from_m: -outer,
-            to_m: -bhw,
+    // The band of the left (or right) wheel track, side faces along both its edges.
+    let track_band = |left: bool| {
+        if left {
+            Extent::Band {
+                from_m: bhw,
+                to_m: outer,
+            }
+        } else {
+            Extent::Band {
+                from_m: -outer,
+                to_m: -bhw,
+            }
         }
     };
+    let band = track_band(left);
     let half_plane = if left {
         Extent::Band {
             from_m: bhw,
@@ -380,7 +373,7 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
                 (false, true) => 6,
             };
             (
-                vec![ramp(d, s * tc, g, a, band, cap)],
+                vec![Element::ramp(d, s * tc, g, a, band).capped(cap)],
                 go(wc, Some(d), Some(g), diagonal(a).then_some(a)),
             )
         }
@@ -388,7 +381,7 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
             let g = rng.gen_range(15.0..26.0);
             let d = rng.gen_range(toe_span.0..toe_span.1);
             (
-                vec![ramp(d, 0.0, g, 0.0, Extent::Full, None)],
+                vec![Element::ramp(d, 0.0, g, 0.0, Extent::Full)],
                 go(2, Some(d), Some(g), None),
             )
         }
@@ -396,7 +389,7 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
             let g = -rng.gen_range(10.0..15.0);
             let d = rng.gen_range(toe_span.0.max(0.9)..toe_span.1.max(1.0));
             (
-                vec![ramp(d, s * tc, g, 0.0, half_plane, None)],
+                vec![Element::ramp(d, s * tc, g, 0.0, half_plane)],
                 go(if left { 9 } else { 10 }, Some(d), Some(g), None),
             )
         }
@@ -405,7 +398,7 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
             let d = rng.gen_range(toe_span.0.max(0.9)..toe_span.1.max(1.0));
             let cap = Some(rng.gen_range(0.12..0.25));
             (
-                vec![ramp(d, s * tc, g, 0.0, band, cap)],
+                vec![Element::ramp(d, s * tc, g, 0.0, band).capped(cap)],
                 go(if left { 9 } else { 10 }, Some(d), Some(g), None),
             )
         }
@@ -418,7 +411,7 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
                 (-rng.gen_range(10.0..15.0), 8)
             };
             (
-                vec![rough(rng), ramp(d, 0.0, g, 0.0, Extent::Full, None)],
+                vec![rough(rng), Element::ramp(d, 0.0, g, 0.0, Extent::Full)],
                 go(wc, Some(d), Some(g), None),
             )
         }
@@ -472,21 +465,10 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
             let d1 = rng.gen_range(toe_span.0..toe_span.1);
             let d2 = d1 + rng.gen_range(0.3..0.6);
             let (g1, g2) = (rng.gen_range(15.0..25.0), rng.gen_range(10.0..25.0));
-            let other = if left {
-                Extent::Band {
-                    from_m: -outer,
-                    to_m: -bhw,
-                }
-            } else {
-                Extent::Band {
-                    from_m: bhw,
-                    to_m: outer,
-                }
-            };
             (
                 vec![
-                    ramp(d1, s * tc, g1, 0.0, band, None),
-                    ramp(d2, -s * tc, g2, 0.0, other, None),
+                    Element::ramp(d1, s * tc, g1, 0.0, band),
+                    Element::ramp(d2, -s * tc, g2, 0.0, track_band(!left)),
                 ],
                 go(if left { 3 } else { 5 }, Some(d1), Some(g1), None),
             )
@@ -517,7 +499,10 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
             } else {
                 go(2, Some(d), Some(g), None)
             };
-            (vec![ramp(d, 0.0, g, 0.0, Extent::Full, None), rock], want)
+            (
+                vec![Element::ramp(d, 0.0, g, 0.0, Extent::Full), rock],
+                want,
+            )
         }
     };
     let rough_ground = elements

@@ -129,6 +129,34 @@ fn rough_waves(correlation_m: f64, seed: u64) -> [(f64, f64, f64); ROUGH_WAVES] 
 }
 
 impl Element {
+    /// A [`Element::Ramp`] with no plateau: toe line at `toe_x_m` (measured at
+    /// `ref_y_m`), gradient and toe-line angle in degrees, over `extent`.
+    pub fn ramp(
+        toe_x_m: f64,
+        ref_y_m: f64,
+        gradient_deg: f64,
+        alpha_deg: f64,
+        extent: Extent,
+    ) -> Element {
+        Element::Ramp {
+            toe_x_m,
+            ref_y_m,
+            gradient_deg,
+            alpha_deg,
+            extent,
+            cap_m: None,
+        }
+    }
+
+    /// This ramp with a plateau `cap_m` metres above (or below) its toe; other
+    /// elements are returned unchanged.
+    pub fn capped(mut self, cap: Option<f64>) -> Element {
+        if let Element::Ramp { cap_m, .. } = &mut self {
+            *cap_m = cap;
+        }
+        self
+    }
+
     fn height(&self, x: f64, y: f64) -> f64 {
         match *self {
             Element::Ramp {
