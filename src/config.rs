@@ -146,6 +146,14 @@ pub struct RoverConfig {
     pub belly_half_width_m: f64,
     /// Outer edge of the wheel tracks, metres (tracks span belly_half_width..this).
     pub track_outer_m: f64,
+    /// Front axle to rear axle, metres: the span the predicted pitch is taken over.
+    pub wheelbase_m: f64,
+    /// Largest predicted body roll the rover may meet, degrees; beyond it a `tilt`
+    /// hazard stops it. `None` (the default): roll is predicted and reported only.
+    pub max_roll_deg: Option<f64>,
+    /// Largest predicted body pitch the rover may meet, degrees; beyond it a `tilt`
+    /// hazard stops it. `None` (the default): pitch is predicted and reported only.
+    pub max_pitch_deg: Option<f64>,
 }
 
 /// `[analysis]`: voxel grid and analysis parameters.
@@ -214,6 +222,9 @@ impl Default for RoverConfig {
             max_slope_deg: 30.0,
             belly_half_width_m: 0.2,
             track_outer_m: 0.7,
+            wheelbase_m: 0.6,
+            max_roll_deg: None,
+            max_pitch_deg: None,
         }
     }
 }
@@ -414,6 +425,18 @@ impl Config {
                 ),
             ));
         }
+        positive("rover.wheelbase_m", r.wheelbase_m)?;
+        for (key, v) in [
+            ("rover.max_roll_deg", r.max_roll_deg),
+            ("rover.max_pitch_deg", r.max_pitch_deg),
+        ] {
+            if let Some(v) = v {
+                positive(key, v)?;
+                if v >= 90.0 {
+                    return Err((key, format!("must be below 90, got {v}")));
+                }
+            }
+        }
         let a = &self.analysis;
         positive("analysis.voxel_m", a.voxel_m)?;
         positive("analysis.corridor_length_m", a.corridor_length_m)?;
@@ -586,6 +609,20 @@ mod tests {
         assert!(e.contains("service.log_level"), "{e}");
         let e = err("[camera]\ndepth_scale_mm = -1\n");
         assert!(e.contains("camera.depth_scale_mm"), "{e}");
+        let e = err("[rover]\nmax_roll_deg = 90\n");
+        assert!(
+            e.contains("rover.max_roll_deg") && e.contains("line 2"),
+            "{e}"
+        );
+        let e = err("[rover]\nmax_pitch_deg = -5\n");
+        assert!(e.contains("rover.max_pitch_deg"), "{e}");
+        let e = err("[rover]\nwheelbase_m = 0\n");
+        assert!(e.contains("rover.wheelbase_m"), "{e}");
+        let c = Config::from_toml("[rover]\nmax_roll_deg = 12.5\n", "x").unwrap();
+        assert_eq!(
+            (c.rover.max_roll_deg, c.rover.max_pitch_deg),
+            (Some(12.5), None)
+        );
     }
 
     #[test]

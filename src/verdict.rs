@@ -30,6 +30,9 @@ pub enum HazardKind {
     DropOff,
     /// Ground the camera should see but does not.
     Unknown,
+    /// The rover's predicted roll or pitch passes the operator's limit
+    /// (`rover.max_roll_deg`, `rover.max_pitch_deg`; off by default).
+    Tilt,
 }
 
 /// Which part of the corridor a hazard is in.
@@ -99,8 +102,23 @@ pub struct SeenTo {
     pub right: f32,
 }
 
+/// The rover body's predicted attitude along the corridor: the largest roll and
+/// pitch it meets with its front axle anywhere on the seen ground (see
+/// [`crate::analysis`]'s tilt prediction for how, and its limits).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Tilt {
+    /// Largest predicted roll, degrees, positive left side up.
+    pub roll_deg: f32,
+    /// Front-axle distance where it is met, metres forward of the rover origin.
+    pub roll_at_m: f32,
+    /// Largest predicted pitch, degrees, positive nose up (climbing).
+    pub pitch_deg: f32,
+    /// Front-axle distance where it is met, metres forward of the rover origin.
+    pub pitch_at_m: f32,
+}
+
 /// Most hazards a verdict carries: one per kind and side.
-pub const MAX_HAZARDS: usize = 16;
+pub const MAX_HAZARDS: usize = 18;
 
 /// Per-stage processing time of one frame, microseconds.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
@@ -132,6 +150,9 @@ pub struct Verdict {
     pub seen_fraction: f32,
     /// How far each band is seen before the sensor's horizon, metres.
     pub seen_to_m: SeenTo,
+    /// The rover's predicted roll and pitch along the seen corridor; `None` when no
+    /// wheel-track ground is seen.
+    pub tilt: Option<Tilt>,
     /// Depth pixels inside the range limits.
     pub points_in: u32,
     /// Points that fell inside the voxel grid.
@@ -164,6 +185,7 @@ impl Default for Verdict {
             hazards: heapless::Vec::new(),
             seen_fraction: 0.0,
             seen_to_m: SeenTo::default(),
+            tilt: None,
             points_in: 0,
             points_binned: 0,
             voxels: 0,
@@ -191,7 +213,7 @@ impl Verdict {
             }
             return;
         }
-        // One per kind and side: 5 × 3 < MAX_HAZARDS, so this cannot overflow.
+        // One per kind and side: 6 × 3 ≤ MAX_HAZARDS, so this cannot overflow.
         let _ = self.hazards.push(h);
     }
 
@@ -223,6 +245,10 @@ impl Verdict {
                 "centre": r3(self.seen_to_m.centre),
                 "right": r3(self.seen_to_m.right),
             },
+            "tilt": self.tilt.map(|t| serde_json::json!({
+                "roll_deg": r3(t.roll_deg), "roll_at_m": r3(t.roll_at_m),
+                "pitch_deg": r3(t.pitch_deg), "pitch_at_m": r3(t.pitch_at_m),
+            })),
             "points_in": self.points_in,
             "points_binned": self.points_binned,
             "voxels": self.voxels,

@@ -24,6 +24,8 @@ pub enum HazardKind {
     DropOff = 4,
     /// Ground that should be seen is not.
     Unknown = 5,
+    /// The rover's predicted roll or pitch passes the operator's limit.
+    Tilt = 6,
 }
 
 /// Where the hazard is.
@@ -153,6 +155,7 @@ impl HazardKind {
             3 => Some(Some(HazardKind::Belly)),
             4 => Some(Some(HazardKind::DropOff)),
             5 => Some(Some(HazardKind::Unknown)),
+            6 => Some(Some(HazardKind::Tilt)),
             _ => None,
         }
     }

@@ -29,6 +29,7 @@ fn verdict_strategy() -> impl Strategy<Value = Verdict> {
                 HazardKind::Belly,
                 HazardKind::DropOff,
                 HazardKind::Unknown,
+                HazardKind::Tilt,
             ];
             let sides = [Side::Left, Side::Centre, Side::Right];
             Verdict {

@@ -28,7 +28,16 @@ use crate::verdict::{Hazard, HazardKind, Verdict};
 /// fall *out of* it, is measured (the bound proves it), while a fall into it or a
 /// rise out of it proves nothing and is not a hazard: the surface simply left the
 /// view (a ramp rising out of the image, seen past its horizon only by its side face).
-pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<StripCell>, verdict: &mut Verdict) {
+///
+/// `surface` receives, per track cell, the height the strip followed there (NaN for
+/// cells it did not follow: unseen, past the horizon, or not in a track).
+pub fn steps_and_slopes(
+    f: &Frame,
+    strip: &mut Vec<StripCell>,
+    surface: &mut [f32],
+    verdict: &mut Verdict,
+) {
+    surface.fill(f32::NAN);
     let r = f.cfg.rover.wheel_radius_m as f32;
     let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
     let vs = f.spec.voxel_m;
@@ -63,6 +72,9 @@ pub fn steps_and_slopes(f: &Frame, strip: &mut Vec<StripCell>, verdict: &mut Ver
                         cell.foot
                     }
                 };
+                if !past {
+                    surface[c] = z;
+                }
                 last = [last[1], Some((cell.x, z))];
                 strip.push(StripCell {
                     x: cell.x,
@@ -209,7 +221,8 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
     }
 }
 
-fn median(values: &mut [f32]) -> f32 {
+/// The median of `values` (sorted in place); NaN when empty.
+pub(crate) fn median(values: &mut [f32]) -> f32 {
     if values.is_empty() {
         return f32::NAN;
     }

@@ -6,6 +6,7 @@
 mod crossing;
 mod feature;
 pub mod plane;
+mod tilt;
 mod visibility;
 
 use std::time::Instant;
@@ -71,6 +72,8 @@ pub struct Analyzer {
     strip: Vec<StripCell>,
     values: Vec<f32>,
     track_ref: Vec<[f32; 2]>,
+    surface: Vec<f32>,
+    profile: Vec<[f32; 2]>,
     onset: Vec<Option<feature::Onset>>,
     use_cell: Vec<bool>,
 }
@@ -148,6 +151,8 @@ impl Analyzer {
             strip: Vec::with_capacity(spec.nx),
             values: Vec::with_capacity(spec.ny),
             track_ref: vec![[f32::NAN; 2]; spec.nx],
+            surface: vec![f32::NAN; spec.cell_count()],
+            profile: vec![[f32::NAN; 2]; spec.nx],
             onset: vec![None; spec.ny],
             use_cell: vec![false; spec.cell_count()],
         })
@@ -264,7 +269,10 @@ impl Analyzer {
             cfg: &self.cfg,
             camera: self.camera,
         };
-        crossing::steps_and_slopes(&frame, &mut self.strip, verdict);
+        crossing::steps_and_slopes(&frame, &mut self.strip, &mut self.surface, verdict);
+        tilt::track_profile(&frame, &self.surface, &mut self.values, &mut self.profile);
+        tilt::fill(&mut self.profile, |ix| self.spec.x_centre(ix));
+        verdict.tilt = tilt::predict(&frame, &self.profile, verdict);
         crossing::belly(&frame, &mut self.values, &mut self.track_ref, verdict);
         crossing::gaps(&frame, verdict);
         let t1 = Instant::now();

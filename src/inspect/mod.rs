@@ -143,7 +143,9 @@ impl<'a> Scene<'a> {
         let side = self.side_of(y);
         let half = self.spec.voxel_m / 2.0;
         for h in &self.verdict.hazards {
-            let here = h.side == side || (h.side == Side::Centre && h.kind == HazardKind::Unknown);
+            let here = h.side == side
+                || (h.side == Side::Centre
+                    && matches!(h.kind, HazardKind::Unknown | HazardKind::Tilt));
             let far = match h.kind {
                 // A slope or drop-off goes on; a step or rock has a near edge.
                 HazardKind::Slope | HazardKind::DropOff => f32::INFINITY,

@@ -120,7 +120,7 @@ pub fn draw(scene: &Scene<'_>) -> Canvas {
         let (lo, hi) = match hz.side {
             Side::Left => (b, o),
             Side::Right => (-o, -b),
-            Side::Centre if hz.kind == HazardKind::Unknown => (-o, o),
+            Side::Centre if matches!(hz.kind, HazardKind::Unknown | HazardKind::Tilt) => (-o, o),
             Side::Centre => (-b, b),
         };
         let y = py(hz.distance_m);
@@ -160,6 +160,7 @@ fn hazard_name(k: HazardKind) -> &'static str {
         HazardKind::Belly => "UNDER BELLY",
         HazardKind::DropOff => "DROP-OFF",
         HazardKind::Unknown => "UNKNOWN",
+        HazardKind::Tilt => "TILT",
     }
 }
 

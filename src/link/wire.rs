@@ -27,6 +27,7 @@ pub fn to_wire(v: &Verdict, age_ms: f64) -> proto::Verdict {
             HazardKind::Belly => proto::HazardKind::Belly,
             HazardKind::DropOff => proto::HazardKind::DropOff,
             HazardKind::Unknown => proto::HazardKind::Unknown,
+            HazardKind::Tilt => proto::HazardKind::Tilt,
         };
         let side = match h.side {
             Side::Left => proto::Side::Left,
@@ -64,6 +65,7 @@ fn name_kind(k: proto::HazardKind) -> &'static str {
         proto::HazardKind::Belly => "belly",
         proto::HazardKind::DropOff => "drop_off",
         proto::HazardKind::Unknown => "unknown",
+        proto::HazardKind::Tilt => "tilt",
     }
 }
 
