@@ -140,6 +140,11 @@ pub struct Cell {
     /// surface of the cell, without the points of a face above it, metres; `crest`
     /// when the band holds less than [`SURFACE_MIN_SHARE`] of the points.
     pub foot: f32,
+    /// Mean (x, y) of the points `crest` is the mean height of, metres. A face along
+    /// a strip hugs one side of its cells; a face across it, their far or near part.
+    pub crest_xy: [f32; 2],
+    /// Mean (x, y) of the points `foot` is the mean height of, metres.
+    pub foot_xy: [f32; 2],
 }
 
 /// Least share of a cell's points that makes its upper or lower band a surface; a
@@ -161,6 +166,8 @@ impl Cell {
         low: f32::INFINITY,
         crest: 0.0,
         foot: 0.0,
+        crest_xy: [0.0; 2],
+        foot_xy: [0.0; 2],
     };
 }
 
@@ -509,10 +516,14 @@ impl VoxelGrid {
             let n = v.count as f32;
             if v.z >= cell.top - band {
                 cell.crest += v.z * n;
+                cell.crest_xy[0] += v.x * n;
+                cell.crest_xy[1] += v.y * n;
                 w[0] += n;
             }
             if v.z <= cell.low + band {
                 cell.foot += v.z * n;
+                cell.foot_xy[0] += v.x * n;
+                cell.foot_xy[1] += v.y * n;
                 w[1] += n;
             }
         }
@@ -521,10 +532,13 @@ impl VoxelGrid {
             let [wc, wf] = self.surface_n[c as usize];
             // A band with few of the cell's points is a face's fringe, not a surface.
             let least = SURFACE_MIN_SHARE * cell.n as f32;
-            let crest = (wc >= least).then(|| cell.crest / wc);
-            let foot = (wf >= least).then(|| cell.foot / wf);
-            cell.crest = crest.or(foot).unwrap_or(cell.z);
-            cell.foot = foot.or(crest).unwrap_or(cell.z);
+            let mean =
+                |z: f32, xy: [f32; 2], w: f32| (w >= least).then(|| (z / w, xy.map(|v| v / w)));
+            let crest = mean(cell.crest, cell.crest_xy, wc);
+            let foot = mean(cell.foot, cell.foot_xy, wf);
+            let whole = (cell.z, [cell.x, cell.y]);
+            (cell.crest, cell.crest_xy) = crest.or(foot).unwrap_or(whole);
+            (cell.foot, cell.foot_xy) = foot.or(crest).unwrap_or(whole);
         }
     }
 }

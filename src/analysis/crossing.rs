@@ -4,6 +4,7 @@
 
 use super::plane::PlaneFit;
 use super::{Frame, Region, StripCell};
+use crate::grid::Cell;
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
 /// Steps and slopes in the wheel tracks.
@@ -55,6 +56,8 @@ pub fn steps_and_slopes(
                 let past = f.past[c];
                 let z = if past {
                     cell.top.max(cell.z)
+                } else if let Some(z) = ground_beside_face(cell, f.spec.y_centre(iy), vs) {
+                    z
                 } else {
                     // Of a cell's two surfaces, the one that continues the strip
                     // (its last height carried on at its slope, up to passable).
@@ -87,6 +90,46 @@ pub fn steps_and_slopes(
         }
     }
 }
+
+/// In a cell with two surfaces, the ground when the face between them runs along the
+/// strip: the face's points hug one side of the cell while the ground's spread across
+/// it, so the surface whose points centre farther off the strip's centre line is the
+/// face (the wall of a trench under the track, the side of a ramp beside the belly
+/// band). `None` when the surfaces are close, or when they are offset more forward
+/// than sideways (a face across the strip: a step, judged by the strip's course).
+pub(crate) fn ground_beside_face(cell: &Cell, y_mid: f32, vs: f32) -> Option<f32> {
+    if cell.crest - cell.foot < FACE_MIN_M {
+        return None;
+    }
+    let dx = cell.crest_xy[0] - cell.foot_xy[0];
+    let dy = cell.crest_xy[1] - cell.foot_xy[1];
+    let off_crest = (cell.crest_xy[1] - y_mid).abs();
+    let off_foot = (cell.foot_xy[1] - y_mid).abs();
+    let (face, ground) = if off_crest > off_foot {
+        (off_crest, off_foot)
+    } else {
+        (off_foot, off_crest)
+    };
+    if dy.abs() <= dx.abs() || face < FACE_OFF_VOXELS * vs || face - ground < SIDE_MIN_VOXELS * vs {
+        return None;
+    }
+    Some(if off_crest < off_foot {
+        cell.crest
+    } else {
+        cell.foot
+    })
+}
+
+/// Least height between a cell's two surfaces for [`ground_beside_face`] to tell
+/// them apart, metres: above rough ground's spread within one cell.
+const FACE_MIN_M: f32 = 0.04;
+/// Least sideways offset of a face's points from the strip's centre line for
+/// [`ground_beside_face`], voxels: a face hugs the cell's side (0.5), a surface spread
+/// across the cell centres on it (0), whatever the noise.
+const FACE_OFF_VOXELS: f32 = 0.3;
+/// Least difference of the two surfaces' sideways offsets for [`ground_beside_face`],
+/// voxels.
+const SIDE_MIN_VOXELS: f32 = 0.2;
 
 /// Steps and slopes along one strip's seen cells (see [`steps_and_slopes`]).
 fn strip_hazards(
@@ -398,5 +441,52 @@ fn judge_gap(
                 .all(|j| super::visibility::explained(f, j, iy, za));
             (!all_shadowed).then_some(HazardKind::Unknown)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cell centred at (1.025, 0.675) with the given surfaces and their centroids.
+    fn cell(crest: f32, crest_xy: [f32; 2], foot: f32, foot_xy: [f32; 2]) -> Cell {
+        Cell {
+            n: 100,
+            x: 1.025,
+            y: 0.675,
+            z: 0.5 * (crest + foot),
+            top: crest,
+            low: foot,
+            crest,
+            foot,
+            crest_xy,
+            foot_xy,
+        }
+    }
+
+    const VS: f32 = 0.05;
+    const MID: f32 = 0.675;
+
+    #[test]
+    fn a_wall_along_the_strip_leaves_the_floor_as_ground() {
+        // A trench's outer wall at y = 0.7: its points (the crest) hug the side.
+        let c = cell(-0.05, [1.025, 0.698], -0.20, [1.025, 0.680]);
+        assert_eq!(ground_beside_face(&c, MID, VS), Some(-0.20));
+        // A ramp's side face at the cell's inner edge: the foot hugs the side.
+        let c = cell(0.30, [1.025, 0.676], 0.12, [1.025, 0.652]);
+        assert_eq!(ground_beside_face(&c, MID, VS), Some(0.30));
+    }
+
+    #[test]
+    fn a_face_across_the_strip_or_close_surfaces_are_left_to_the_strip() {
+        // A step's face: the crest lies behind the foot, not beside it.
+        let c = cell(0.15, [1.040, 0.690], 0.0, [1.008, 0.675]);
+        assert_eq!(ground_beside_face(&c, MID, VS), None);
+        // Rough ground: two bands 3 cm apart are one surface.
+        let c = cell(0.02, [1.025, 0.699], -0.01, [1.025, 0.675]);
+        assert_eq!(ground_beside_face(&c, MID, VS), None);
+        // Both bands spread across the cell: no side to hug.
+        let c = cell(0.10, [1.025, 0.682], 0.0, [1.025, 0.672]);
+        assert_eq!(ground_beside_face(&c, MID, VS), None);
     }
 }

@@ -16,9 +16,9 @@
 //!    the toe line's left end is nearer. A face too steep to fit as a plane (a low
 //!    step) is measured from the onsets, with a gradient of ±90°.
 
+use super::crossing::ground_beside_face;
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region};
-use crate::grid::Cell;
 use crate::verdict::Feature;
 
 /// Which way the ground goes at an onset.
@@ -72,7 +72,7 @@ fn fit_face(
         chosen(iy)
             && matches!(onset[iy], Some(o) if o.dir == dir && ix >= o.ix)
             && f.seen[c]
-            && status(&f.cells[c], threshold) == Some(dir)
+            && status(height(f, c), threshold) == Some(dir)
     };
     let in_window = |ix: usize, iy: usize| match onset[iy] {
         Some(o) => s.x_centre(ix) <= s.x_centre(o.ix) + FIRST_WINDOW_M,
@@ -109,7 +109,7 @@ fn fit_face(
                 fit.add(
                     f64::from(cell.x),
                     f64::from(cell.y),
-                    f64::from(cell.z),
+                    f64::from(height(f, c)),
                     f64::from(cell.n),
                 );
                 used += 1;
@@ -121,7 +121,8 @@ fn fit_face(
         let mut sq = 0.0;
         for (c, cell) in f.cells.iter().enumerate() {
             if use_cell[c] {
-                let r = f64::from(cell.z) - p.z(f64::from(cell.x), f64::from(cell.y));
+                let z = height(f, c);
+                let r = f64::from(z) - p.z(f64::from(cell.x), f64::from(cell.y));
                 sq += f64::from(cell.n) * r * r;
             }
         }
@@ -134,7 +135,8 @@ fn fit_face(
                 }
                 let c = s.cell(ix, iy);
                 let cell = &f.cells[c];
-                let r = f64::from(cell.z) - p.z(f64::from(cell.x), f64::from(cell.y));
+                let z = height(f, c);
+                let r = f64::from(z) - p.z(f64::from(cell.x), f64::from(cell.y));
                 let ok =
                     r.abs() <= tol && past_toe(&p, ix, iy) && (iteration >= 2 || in_window(ix, iy));
                 if ok != use_cell[c] {
@@ -164,10 +166,19 @@ fn same_face(l: &Plane, r: &Plane, tc: f64) -> bool {
 /// How far two one-track fits of one face may disagree in height, metres.
 const SAME_FACE_M: f64 = 0.03;
 
-fn status(c: &Cell, threshold: f32) -> Option<Dir> {
-    if c.z > threshold {
+/// A track cell's ground height: its mean, or beside a face along its strip (a
+/// trench's wall, a ramp's side) the surface spread across the cell
+/// ([`ground_beside_face`]).
+fn height(f: &Frame, c: usize) -> f32 {
+    let s = f.spec;
+    let cell = &f.cells[c];
+    ground_beside_face(cell, s.y_centre(c % s.ny), s.voxel_m).unwrap_or(cell.z)
+}
+
+fn status(z: f32, threshold: f32) -> Option<Dir> {
+    if z > threshold {
         Some(Dir::Up)
-    } else if c.z < -threshold {
+    } else if z < -threshold {
         Some(Dir::Down)
     } else {
         None
@@ -190,7 +201,7 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
             if !f.seen[c] {
                 continue;
             }
-            let st = status(&f.cells[c], threshold);
+            let st = status(height(f, c), threshold);
             match (pending, st) {
                 (Some(p), Some(d)) if p.dir == d => {
                     *slot = Some(p);
