@@ -292,24 +292,68 @@ impl Config {
         }
     }
 
-    /// Check every value; on failure, the dotted key and what is wrong.
-    pub fn validate(&self) -> Result<(), (&'static str, String)> {
-        fn finite(key: &'static str, v: f64) -> Result<(), (&'static str, String)> {
-            if v.is_finite() {
-                Ok(())
-            } else {
-                Err((key, format!("must be a finite number, got {v}")))
-            }
+    /// Check every value; on failure, the dotted key and what is wrong. Section by
+    /// section, in file order, then what spans sections (the grid's size).
+    pub fn validate(&self) -> Result<(), Invalid> {
+        self.camera.check()?;
+        self.mount.check()?;
+        self.rover.check()?;
+        self.analysis.check()?;
+        self.link.check()?;
+        self.service.check()?;
+        self.check_grid()
+    }
+
+    /// The voxel grid the corridor needs fits, and a voxel is narrower than the belly band.
+    fn check_grid(&self) -> Result<(), Invalid> {
+        let (a, r) = (&self.analysis, &self.rover);
+        let cells = |len: f64| (len / a.voxel_m).ceil();
+        let voxels = cells(a.corridor_length_m)
+            * cells(2.0 * r.track_outer_m)
+            * cells(a.z_max_m - a.z_min_m);
+        if voxels > MAX_VOXELS as f64 {
+            return Err((
+            "analysis.voxel_m",
+            format!("the voxel grid would hold {voxels:.0} voxels (at most {MAX_VOXELS}); use larger voxels or a shorter corridor"),
+        ));
         }
-        fn positive(key: &'static str, v: f64) -> Result<(), (&'static str, String)> {
-            finite(key, v)?;
-            if v > 0.0 {
-                Ok(())
-            } else {
-                Err((key, format!("must be positive, got {v}")))
-            }
+        if a.voxel_m > r.belly_half_width_m {
+            return Err((
+                "analysis.voxel_m",
+                format!(
+                    "must not exceed rover.belly_half_width_m ({})",
+                    r.belly_half_width_m
+                ),
+            ));
         }
-        let c = &self.camera;
+        Ok(())
+    }
+}
+
+/// A failed check: the dotted key and what is wrong with its value.
+pub type Invalid = (&'static str, String);
+
+fn finite(key: &'static str, v: f64) -> Result<(), Invalid> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err((key, format!("must be a finite number, got {v}")))
+    }
+}
+
+fn positive(key: &'static str, v: f64) -> Result<(), Invalid> {
+    finite(key, v)?;
+    if v > 0.0 {
+        Ok(())
+    } else {
+        Err((key, format!("must be positive, got {v}")))
+    }
+}
+
+impl CameraConfig {
+    /// `[camera]`: image size, fields of view, range limits, intrinsics, source, rate.
+    fn check(&self) -> Result<(), Invalid> {
+        let c = self;
         if c.width == 0 || c.width as usize > rover_terrain_drivers::MAX_WIDTH {
             return Err((
                 "camera.width",
@@ -373,7 +417,7 @@ impl Config {
                 finite(key, v)?;
             }
         }
-        if let Some((fx, fy, _, _)) = self.pinhole() {
+        if let (Some(fx), Some(fy)) = (c.fx, c.fy) {
             positive("camera.fx", fx)?;
             positive("camera.fy", fy)?;
         }
@@ -384,7 +428,14 @@ impl Config {
         }
         within("camera.fps", c.fps, 1, 240)?;
         positive("camera.depth_scale_mm", c.depth_scale_mm)?;
-        let m = &self.mount;
+        Ok(())
+    }
+}
+
+impl MountConfig {
+    /// `[mount]`: finite offsets, a camera above the ground, angles within ±90°.
+    fn check(&self) -> Result<(), Invalid> {
+        let m = self;
         for (key, v) in [
             ("mount.x_m", m.x_m),
             ("mount.y_m", m.y_m),
@@ -404,7 +455,14 @@ impl Config {
                 return Err((key, format!("must be within ±90, got {v}")));
             }
         }
-        let r = &self.rover;
+        Ok(())
+    }
+}
+
+impl RoverConfig {
+    /// `[rover]`: positive sizes, slopes and tilt limits below 90°, tracks outside the belly band.
+    fn check(&self) -> Result<(), Invalid> {
+        let r = self;
         positive("rover.wheel_radius_m", r.wheel_radius_m)?;
         positive("rover.belly_clearance_m", r.belly_clearance_m)?;
         positive("rover.max_slope_deg", r.max_slope_deg)?;
@@ -437,7 +495,14 @@ impl Config {
                 }
             }
         }
-        let a = &self.analysis;
+        Ok(())
+    }
+}
+
+impl AnalysisConfig {
+    /// `[analysis]`: positive voxel and corridor, a height range, thresholds in range.
+    fn check(&self) -> Result<(), Invalid> {
+        let a = self;
         positive("analysis.voxel_m", a.voxel_m)?;
         positive("analysis.corridor_length_m", a.corridor_length_m)?;
         finite("analysis.z_min_m", a.z_min_m)?;
@@ -472,13 +537,27 @@ impl Config {
         if a.gap_min_cells == 0 {
             return Err(("analysis.gap_min_cells", "must be at least 1".into()));
         }
-        if let Err(e) = self.link.target.parse::<crate::link::LinkTarget>() {
+        Ok(())
+    }
+}
+
+impl LinkConfig {
+    /// `[link]`: a target that parses, a positive baud rate.
+    fn check(&self) -> Result<(), Invalid> {
+        if let Err(e) = self.target.parse::<crate::link::LinkTarget>() {
             return Err(("link.target", e.to_string()));
         }
-        if self.link.baud == 0 {
+        if self.baud == 0 {
             return Err(("link.baud", "must be positive".into()));
         }
-        let sv = &self.service;
+        Ok(())
+    }
+}
+
+impl ServiceConfig {
+    /// `[service]`: timings and pool size in range, a known log level.
+    fn check(&self) -> Result<(), Invalid> {
+        let sv = self;
         within("service.frame_timeout_ms", sv.frame_timeout_ms, 10, 60_000)?;
         within("service.heartbeat_ms", sv.heartbeat_ms, 10, 10_000)?;
         within("service.stats_interval_s", sv.stats_interval_s, 1, 3600)?;
@@ -489,25 +568,6 @@ impl Config {
                 format!(
                     "must be off, error, warn, info, debug or trace, got {:?}",
                     sv.log_level
-                ),
-            ));
-        }
-        let cells = |len: f64| (len / a.voxel_m).ceil();
-        let voxels = cells(a.corridor_length_m)
-            * cells(2.0 * r.track_outer_m)
-            * cells(a.z_max_m - a.z_min_m);
-        if voxels > MAX_VOXELS as f64 {
-            return Err((
-                "analysis.voxel_m",
-                format!("the voxel grid would hold {voxels:.0} voxels (at most {MAX_VOXELS}); use larger voxels or a shorter corridor"),
-            ));
-        }
-        if a.voxel_m > r.belly_half_width_m {
-            return Err((
-                "analysis.voxel_m",
-                format!(
-                    "must not exceed rover.belly_half_width_m ({})",
-                    r.belly_half_width_m
                 ),
             ));
         }
@@ -623,6 +683,37 @@ mod tests {
             (c.rover.max_roll_deg, c.rover.max_pitch_deg),
             (Some(12.5), None)
         );
+    }
+
+    #[test]
+    fn each_section_checks_its_own_keys() {
+        let key = |r: Result<(), Invalid>| r.unwrap_err().0;
+        let d = Config::default();
+        assert!(d.camera.check().is_ok() && d.mount.check().is_ok());
+        assert!(d.rover.check().is_ok() && d.analysis.check().is_ok());
+        assert!(d.link.check().is_ok() && d.service.check().is_ok());
+        let mut c = d.camera.clone();
+        c.fx = Some(400.0);
+        assert_eq!(key(c.check()), "camera.fy");
+        let mut m = d.mount.clone();
+        m.yaw_deg = 91.0;
+        assert_eq!(key(m.check()), "mount.yaw_deg");
+        let mut r = d.rover.clone();
+        r.track_outer_m = 0.1;
+        assert_eq!(key(r.check()), "rover.track_outer_m");
+        let mut a = d.analysis.clone();
+        a.z_max_m = a.z_min_m;
+        assert_eq!(key(a.check()), "analysis.z_min_m");
+        let mut l = d.link.clone();
+        l.baud = 0;
+        assert_eq!(key(l.check()), "link.baud");
+        let mut sv = d.service.clone();
+        sv.pool_frames = 40;
+        assert_eq!(key(sv.check()), "service.pool_frames");
+        // Across sections: a grid too big for the memory it is given.
+        let mut g = d.clone();
+        g.analysis.voxel_m = 0.001;
+        assert_eq!(key(g.check_grid()), "analysis.voxel_m");
     }
 
     #[test]

@@ -14,6 +14,7 @@ use rover_terrain_drivers::DepthFrame;
 use serde::{Deserialize, Serialize};
 
 use crate::config::Config;
+use crate::inspect::plots;
 use crate::sim::{self, catalogue, Expectation, KinectNoise, SceneConfig, Terrain};
 use crate::verdict::Verdict;
 use crate::{Error, Pipeline};
@@ -53,14 +54,52 @@ pub const CONFUSION_PLOT: &str = "validation-confusion.png";
 
 /// Write the plots of `results` into `dir`: [`ERROR_PLOT`] and [`CONFUSION_PLOT`].
 pub fn write_plots(results: &[CaseResult], dir: &Path) -> Result<(), Error> {
+    let bars = plots::ErrorBars {
+        clean: (CLEAN.distance_m * 1e3, CLEAN.gradient_deg),
+        noisy: (NOISY.distance_m * 1e3, NOISY.gradient_deg),
+    };
     for (name, canvas) in [
-        (ERROR_PLOT, crate::inspect::plots::error_plot(results)),
-        (CONFUSION_PLOT, crate::inspect::plots::confusion(results)),
+        (ERROR_PLOT, plots::error_plot(&error_points(results), bars)),
+        (CONFUSION_PLOT, plots::confusion(&confusion_counts(results))),
     ] {
         let path = dir.join(name);
         std::fs::write(&path, canvas.png()).map_err(|e| Error::Io { path, source: e })?;
     }
     Ok(())
+}
+
+/// The measured features of `results`, for [`plots::error_plot`].
+fn error_points(results: &[CaseResult]) -> Vec<plots::ErrorPoint> {
+    results
+        .iter()
+        .filter_map(|r| {
+            let e = &r.fixture.expected;
+            let d = e.distance_m?;
+            let f = r.got.feature?;
+            Some(plots::ErrorPoint {
+                expected_distance_m: d,
+                distance_error_mm: f.distance_m.map(|g| (f64::from(g) - d).abs() * 1e3),
+                gradient_error_deg: e
+                    .gradient_deg
+                    .zip(f.gradient_deg)
+                    .map(|(w, g)| (f64::from(g) - w).abs()),
+                noisy: r.fixture.noise.is_some(),
+            })
+        })
+        .collect()
+}
+
+/// Counts of expected (rows) against got (columns) classes over `results`
+/// ([`plots::class`]).
+pub fn confusion_counts(results: &[CaseResult]) -> [[u32; 12]; 12] {
+    let mut m = [[0u32; 12]; 12];
+    for r in results {
+        let e = &r.fixture.expected;
+        let want = plots::class(e.verdict, e.workcase);
+        let got = plots::class(r.got.decision, r.got.feature.map(|f| f.workcase));
+        m[want][got] += 1;
+    }
+    m
 }
 
 /// Suffix of fixture files.

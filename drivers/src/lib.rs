@@ -15,12 +15,13 @@ mod frame;
 #[cfg(feature = "freenect")]
 pub mod freenect;
 pub mod image;
+mod nodes;
+mod source;
 #[cfg(feature = "v4l")]
 pub mod v4l;
 
-pub use camera::{
-    list_cameras, open, open_with, CameraOptions, CameraSpec, DepthCamera, FrameStatus,
-};
+pub use camera::{CameraOptions, DepthCamera, FrameStatus};
 pub use error::DriverError;
 pub use fake::{FakeCamera, Faults, Pace};
 pub use frame::{ColourFrame, DepthFrame, MAX_HEIGHT, MAX_WIDTH};
+pub use source::{list_cameras, open, open_with, CameraSpec};

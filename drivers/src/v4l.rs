@@ -180,7 +180,7 @@ fn find(spec: &Path) -> Result<(PathBuf, Device), DriverError> {
         return Ok((spec.to_path_buf(), dev));
     }
     let want = spec_str.to_lowercase();
-    let nodes = crate::camera::video_nodes();
+    let nodes = crate::nodes::video_nodes();
     for p in nodes {
         if let Ok(dev) = Device::with_path(&p) {
             if dev

@@ -2,7 +2,6 @@
 //! against distance, and the confusion matrix of workcases.
 
 use super::canvas::{rgb, Canvas, BODY, SMALL};
-use crate::validate::{CaseResult, CLEAN, NOISY};
 use crate::verdict::Decision;
 
 /// Size of the error plot, pixels.
@@ -128,28 +127,41 @@ fn marker(c: &mut Canvas, x: i32, y: i32, noisy: bool) {
     }
 }
 
+/// One measured feature for [`error_plot`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ErrorPoint {
+    /// The expected toe distance, metres (the x axis).
+    pub expected_distance_m: f64,
+    /// Absolute toe distance error, millimetres; `None` when not measured.
+    pub distance_error_mm: Option<f64>,
+    /// Absolute gradient error, degrees; `None` when not measured.
+    pub gradient_error_deg: Option<f64>,
+    /// Whether the frame had sensor noise (drawn as a triangle, else a square).
+    pub noisy: bool,
+}
+
+/// The bars [`error_plot`] draws dashed: (distance in millimetres, gradient in
+/// degrees) for clean and for noisy frames.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ErrorBars {
+    /// Clean frames' bar.
+    pub clean: (f64, f64),
+    /// Noisy frames' bar.
+    pub noisy: (f64, f64),
+}
+
 /// Absolute errors against the expected distance, on log scales: toe distance in
 /// millimetres (top) and gradient in degrees (bottom), clean fixtures as blue squares,
 /// Kinect-noise ones as orange triangles, each bar dashed. An exact result sits on the
 /// bottom axis.
-pub fn error_plot(results: &[CaseResult]) -> Canvas {
+pub fn error_plot(rows: &[ErrorPoint], bars: ErrorBars) -> Canvas {
     let (w, h) = ERROR_SIZE;
     let mut c = Canvas::new(w, h, rgb(255, 255, 255));
-    let rows: Vec<(f64, Option<f64>, Option<f64>, bool)> = results
+    let x_max = rows
         .iter()
-        .filter_map(|r| {
-            let e = &r.fixture.expected;
-            let d = e.distance_m?;
-            let f = r.got.feature?;
-            let dd = f.distance_m.map(|g| (f64::from(g) - d).abs() * 1e3);
-            let dg = e
-                .gradient_deg
-                .zip(f.gradient_deg)
-                .map(|(w, g)| (f64::from(g) - w).abs());
-            Some((d, dd, dg, r.fixture.noise.is_some()))
-        })
-        .collect();
-    let x_max = rows.iter().map(|r| r.0).fold(2.0f64, f64::max).ceil();
+        .map(|r| r.expected_distance_m)
+        .fold(2.0f64, f64::max)
+        .ceil();
     let top = Panel {
         x0: 80,
         y0: 60,
@@ -175,26 +187,18 @@ pub fn error_plot(results: &[CaseResult]) -> Canvas {
     );
     top.axes(&mut c, "toe distance error (log scale)", "millimetres");
     bottom.axes(&mut c, "gradient error (log scale)", "degrees");
-    top.limit(
-        &mut c,
-        CLEAN.distance_m * 1e3,
-        "clean bar",
-        rgb(30, 90, 220),
-    );
-    top.limit(
-        &mut c,
-        NOISY.distance_m * 1e3,
-        "noisy bar",
-        rgb(230, 120, 0),
-    );
-    bottom.limit(&mut c, CLEAN.gradient_deg, "clean bar", rgb(30, 90, 220));
-    bottom.limit(&mut c, NOISY.gradient_deg, "noisy bar", rgb(230, 120, 0));
-    for &(d, dd, dg, noisy) in &rows {
-        if let Some(e) = dd {
-            marker(&mut c, top.px(d), top.py(e), noisy);
+    let [clean, noisy] = [bars.clean, bars.noisy];
+    top.limit(&mut c, clean.0, "clean bar", rgb(30, 90, 220));
+    top.limit(&mut c, noisy.0, "noisy bar", rgb(230, 120, 0));
+    bottom.limit(&mut c, clean.1, "clean bar", rgb(30, 90, 220));
+    bottom.limit(&mut c, noisy.1, "noisy bar", rgb(230, 120, 0));
+    for r in rows {
+        let d = r.expected_distance_m;
+        if let Some(e) = r.distance_error_mm {
+            marker(&mut c, top.px(d), top.py(e), r.noisy);
         }
-        if let Some(e) = dg {
-            marker(&mut c, bottom.px(d), bottom.py(e), noisy);
+        if let Some(e) = r.gradient_error_deg {
+            marker(&mut c, bottom.px(d), bottom.py(e), r.noisy);
         }
     }
     c.text("expected toe distance, m", 380, 610, BODY, rgb(0, 0, 0));
@@ -210,7 +214,9 @@ pub const CLASSES: [&str; 12] = [
     "wc1", "wc2", "wc3", "wc4", "wc5", "wc6", "wc7", "wc8", "wc9", "wc10", "stop", "unknown",
 ];
 
-fn class(decision: Decision, workcase: Option<u8>) -> usize {
+/// The confusion-matrix class of a verdict: its workcase (0-9), stop (10) or
+/// unknown (11, also a go without a workcase).
+pub fn class(decision: Decision, workcase: Option<u8>) -> usize {
     match (decision, workcase) {
         (Decision::Go, Some(w)) if (1..=10).contains(&w) => usize::from(w - 1),
         (Decision::Stop, _) => 10,
@@ -218,24 +224,12 @@ fn class(decision: Decision, workcase: Option<u8>) -> usize {
     }
 }
 
-/// Counts of expected (rows) against got (columns) over `results`.
-pub fn confusion_counts(results: &[CaseResult]) -> [[u32; 12]; 12] {
-    let mut m = [[0u32; 12]; 12];
-    for r in results {
-        let e = &r.fixture.expected;
-        let want = class(e.verdict, e.workcase);
-        let got = class(r.got.decision, r.got.feature.map(|f| f.workcase));
-        m[want][got] += 1;
-    }
-    m
-}
-
-/// The confusion matrix of the fixture suite: expected class down, analysed class
-/// across, counts in the cells; the diagonal green, anything off it red.
-pub fn confusion(results: &[CaseResult]) -> Canvas {
+/// The confusion matrix of the fixture suite from its counts (expected [`class`]
+/// down, analysed class across): counts in the cells, the diagonal green, anything
+/// off it red.
+pub fn confusion(m: &[[u32; 12]; 12]) -> Canvas {
     let (w, h) = CONFUSION_SIZE;
     let mut c = Canvas::new(w, h, rgb(255, 255, 255));
-    let m = confusion_counts(results);
     let (x0, y0, cell) = (110, 90, 40);
     c.text(
         "Validation: workcases, expected (rows) vs analysed (columns)",

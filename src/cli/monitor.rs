@@ -75,13 +75,32 @@ impl Monitor {
     }
 }
 
-/// Run the monitor until `count` valid messages (or forever), or the link closes.
-pub fn run(
-    target: &LinkTarget,
+/// `monitor`'s arguments.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// serial:PATH, slcan:PATH or can:IFACE (feature socketcan).
+    #[arg(long)]
+    link: LinkTarget,
+    /// Serial speed.
+    #[arg(long, default_value_t = rover_terrain::link::DEFAULT_BAUD)]
     baud: u32,
+    /// Exit after this many valid messages (verdicts and heartbeats).
+    #[arg(long)]
     count: Option<u64>,
+    /// No valid verdict for this long and the controller would stop, ms.
+    #[arg(long, default_value_t = 200)]
     deadline_ms: u64,
-) -> anyhow::Result<ExitCode> {
+}
+
+/// Run the monitor until `count` valid messages (or forever), or the link closes.
+pub fn run(args: Args) -> anyhow::Result<ExitCode> {
+    let Args {
+        link: target,
+        baud,
+        count,
+        deadline_ms,
+    } = args;
+    let target = &target;
     let mut m = Monitor {
         out: std::io::stdout().lock(),
         guard: Freshness::new(deadline_ms),

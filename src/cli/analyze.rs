@@ -1,0 +1,65 @@
+//! `analyze`: one JSON verdict per frame on stdout.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use rover_terrain::link::wire;
+use rover_terrain_drivers::CameraSpec;
+
+use super::frames::{for_each_verdict, sources};
+use super::{bundled, exit_code, load_config};
+
+/// What `analyze` prints per frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// Every field, with timings.
+    Full,
+    /// The wire form, as `monitor` prints it.
+    Wire,
+}
+
+/// `analyze`'s arguments.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Config file (TOML); defaults for every key not set.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// `full`: every field with timings; `wire`: what the link carries, exactly as
+    /// `monitor` prints it.
+    #[arg(long, value_enum, default_value_t = Format::Full)]
+    format: Format,
+    /// A camera instead of files: freenect[:INDEX], v4l:PATH or fake:PATH.
+    #[arg(long)]
+    camera: Option<CameraSpec>,
+    /// Stop after this many frames.
+    #[arg(long)]
+    frames: Option<u64>,
+    /// Depth images, directories or fakenect sessions.
+    input: Vec<PathBuf>,
+}
+
+/// Analyse the inputs (default: the bundled fixtures) and print each verdict.
+pub fn run(args: Args) -> anyhow::Result<ExitCode> {
+    let config = load_config(args.config.as_deref())?;
+    let inputs = sources(args.camera, args.input, Some(bundled("fixtures/scenes")))?;
+    let stdout = std::io::stdout();
+    let mut out = stdout.lock();
+    let failed = for_each_verdict(config, &inputs, args.frames, |a| {
+        let v = a.verdict;
+        let json = match args.format {
+            Format::Full => {
+                let mut json = v.to_json();
+                if let Some(p) = a.source {
+                    json["source"] = serde_json::Value::from(p.display().to_string());
+                }
+                json
+            }
+            Format::Wire => wire::verdict_json(&wire::to_wire(v, 0.0)),
+        };
+        writeln!(out, "{json}").context("writing to stdout")
+    })?;
+    out.flush().context("writing to stdout")?;
+    Ok(exit_code(failed))
+}
