@@ -185,11 +185,55 @@ fn status(z: f32, threshold: f32) -> Option<Dir> {
     }
 }
 
-/// The feature of a passable corridor.
+/// Which tracks a face affects, and which way it goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Affected {
+    dir: Dir,
+    left: bool,
+    right: bool,
+}
+
+impl Affected {
+    /// Whether strip `iy` takes part in the fit and the measures.
+    fn chosen(self, f: &Frame, iy: usize) -> bool {
+        chosen(f.region[iy], self.left, self.right)
+    }
+}
+
+/// The feature of a passable corridor: onsets, affected tracks, the face's plane,
+/// its measures and the workcase they make (see the module doc).
 pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) -> Feature {
+    find_onsets(f, onset);
+    let Some(affected) = affected_tracks(f, onset) else {
+        return Feature::FLAT;
+    };
+    let affected = one_face_or_nearer(f, onset, use_cell, affected);
+    let plane = fit_face(
+        f,
+        onset,
+        use_cell,
+        affected.dir,
+        affected.left,
+        affected.right,
+    );
+    let (distance, gradient, alpha) = measures(f, onset, plane, affected);
+    let diagonal = alpha.abs() >= f.cfg.analysis.diagonal_min_deg;
+    let workcase = workcase(affected, diagonal);
+    let vs = f64::from(f.spec.voxel_m);
+    Feature {
+        workcase,
+        toe_seen: distance >= nearest_seen(f, affected) - vs,
+        distance_m: Some(distance as f32),
+        gradient_deg: Some(gradient as f32),
+        alpha_deg: matches!(workcase, 4 | 6 | 7).then_some(alpha as f32),
+    }
+}
+
+/// Step 1: in each track strip, the first seen cell that rises (or falls) past the
+/// threshold, confirmed by the next seen cell; else the last unconfirmed one.
+fn find_onsets(f: &Frame, onset: &mut [Option<Onset>]) {
     let s = f.spec;
     let threshold = f.cfg.analysis.rise_threshold_m as f32;
-    // 1. Onsets per track strip.
     for (iy, slot) in onset.iter_mut().enumerate() {
         *slot = None;
         if f.region[iy] == Region::Belly {
@@ -214,37 +258,46 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
             *slot = pending;
         }
     }
-    // 2. Affected tracks.
-    let summary = |region: Region| -> Option<(Dir, usize)> {
-        let (mut seen, mut up, mut down, mut near_up, mut near_down) =
-            (0, 0, 0, usize::MAX, usize::MAX);
-        for iy in f.strips(region) {
-            if (0..s.nx).any(|ix| f.seen[s.cell(ix, iy)]) {
-                seen += 1;
-            }
-            match onset[iy] {
-                Some(Onset { ix, dir: Dir::Up }) => {
-                    up += 1;
-                    near_up = near_up.min(ix);
-                }
-                Some(Onset { ix, dir: Dir::Down }) => {
-                    down += 1;
-                    near_down = near_down.min(ix);
-                }
-                None => {}
-            }
+}
+
+/// Step 2 for one track: its direction and nearest onset row when at least half of
+/// its seen strips have an onset that way (rising wins a tie).
+fn track_onset(f: &Frame, onset: &[Option<Onset>], region: Region) -> Option<(Dir, usize)> {
+    let s = f.spec;
+    let (mut seen, mut up, mut down, mut near_up, mut near_down) =
+        (0, 0, 0, usize::MAX, usize::MAX);
+    for iy in f.strips(region) {
+        if (0..s.nx).any(|ix| f.seen[s.cell(ix, iy)]) {
+            seen += 1;
         }
-        if up > 0 && up >= down && 2 * up >= seen {
-            Some((Dir::Up, near_up))
-        } else if down > 0 && 2 * down >= seen {
-            Some((Dir::Down, near_down))
-        } else {
-            None
+        match onset[iy] {
+            Some(Onset { ix, dir: Dir::Up }) => {
+                up += 1;
+                near_up = near_up.min(ix);
+            }
+            Some(Onset { ix, dir: Dir::Down }) => {
+                down += 1;
+                near_down = near_down.min(ix);
+            }
+            None => {}
         }
-    };
-    let (left, right) = (summary(Region::Left), summary(Region::Right));
-    let (dir, use_left, use_right) = match (left, right) {
-        (None, None) => return Feature::FLAT,
+    }
+    if up > 0 && up >= down && 2 * up >= seen {
+        Some((Dir::Up, near_up))
+    } else if down > 0 && 2 * down >= seen {
+        Some((Dir::Down, near_down))
+    } else {
+        None
+    }
+}
+
+/// Step 2: the affected tracks; when they go opposite ways, the one whose onset is
+/// nearer. `None` on flat ground.
+fn affected_tracks(f: &Frame, onset: &[Option<Onset>]) -> Option<Affected> {
+    let left = track_onset(f, onset, Region::Left);
+    let right = track_onset(f, onset, Region::Right);
+    let (dir, left, right) = match (left, right) {
+        (None, None) => return None,
         (Some((a, _)), Some((b, _))) if a == b => (a, true, true),
         (Some((a, _)), None) => (a, true, false),
         (None, Some((b, _))) => (b, false, true),
@@ -256,106 +309,247 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
             }
         }
     };
-    let tc = 0.5 * (f.cfg.rover.belly_half_width_m + f.cfg.rover.track_outer_m);
-    let (mut use_left, mut use_right) = (use_left, use_right);
-    if use_left && use_right {
-        // Both tracks rise (or fall): one face across both, or a different face
-        // under each? Fit each alone; if they disagree, the nearer one is the feature.
-        let l = fit_face(f, onset, use_cell, dir, true, false);
-        let r = fit_face(f, onset, use_cell, dir, false, true);
-        if let (Some(l), Some(r)) = (l, r) {
-            if !same_face(&l, &r, tc) {
-                if l.toe_x(tc) <= r.toe_x(-tc) {
-                    use_right = false;
-                } else {
-                    use_left = false;
-                }
+    Some(Affected { dir, left, right })
+}
+
+/// Both tracks rise (or fall): one face across both, or a different face under
+/// each? Fit each alone; if they disagree ([`same_face`]), the nearer one is the
+/// feature.
+fn one_face_or_nearer(
+    f: &Frame,
+    onset: &[Option<Onset>],
+    use_cell: &mut [bool],
+    mut a: Affected,
+) -> Affected {
+    if !(a.left && a.right) {
+        return a;
+    }
+    let tc = track_centre(f);
+    let l = fit_face(f, onset, use_cell, a.dir, true, false);
+    let r = fit_face(f, onset, use_cell, a.dir, false, true);
+    if let (Some(l), Some(r)) = (l, r) {
+        if !same_face(&l, &r, tc) {
+            if l.toe_x(tc) <= r.toe_x(-tc) {
+                a.right = false;
+            } else {
+                a.left = false;
             }
         }
     }
-    let chosen = |iy: usize| chosen(f.region[iy], use_left, use_right);
-    let plane = fit_face(f, onset, use_cell, dir, use_left, use_right);
-    let vs = f64::from(s.voxel_m);
-    // 4. Measures.
-    let y_ref = match (use_left, use_right) {
+    a
+}
+
+/// Centre line of the left track, metres (the right one's is its mirror).
+fn track_centre(f: &Frame) -> f64 {
+    0.5 * (f.cfg.rover.belly_half_width_m + f.cfg.rover.track_outer_m)
+}
+
+/// Step 4: (distance, gradient, alpha) of the face: from the fitted plane when it
+/// is a slope the right way, else from the onsets (a low step).
+fn measures(
+    f: &Frame,
+    onset: &[Option<Onset>],
+    plane: Option<Plane>,
+    a: Affected,
+) -> (f64, f64, f64) {
+    let tc = track_centre(f);
+    let y_ref = match (a.left, a.right) {
         (true, true) => 0.0,
         (true, false) => tc,
         _ => -tc,
     };
-    let sign = if dir == Dir::Up { 1.0 } else { -1.0 };
+    let sign = if a.dir == Dir::Up { 1.0 } else { -1.0 };
     let sloped = plane.filter(|p| p.a * sign > 0.0 && p.gradient_deg() >= MIN_FACE_DEG);
-    let (distance, gradient, alpha) = match sloped {
+    match sloped {
         Some(p) => (
             p.toe_x(y_ref),
             sign * p.gradient_deg(),
             (p.b / p.a).atan().to_degrees(),
         ),
         None => {
-            // A step: the toe line through the onsets' near edges.
-            let mut fit = PlaneFit::default();
-            for (iy, o) in onset.iter().enumerate() {
-                if let Some(o) = o.filter(|o| o.dir == dir && chosen(iy)) {
-                    let x = f64::from(s.x_centre(o.ix)) - 0.5 * vs;
-                    // Fit x = q·y + x0 as a "plane" in (y, ·): reuse the line fit.
-                    fit.add(f64::from(s.y_centre(iy)), 0.0, x, 1.0);
-                }
-            }
-            match fit.solve() {
-                Some(line) => (
-                    line.a * y_ref + line.c,
-                    sign * 90.0,
-                    (-line.a).atan().to_degrees(),
-                ),
-                None => {
-                    let x = onset
-                        .iter()
-                        .enumerate()
-                        .filter_map(|(iy, o)| o.filter(|o| o.dir == dir && chosen(iy)))
-                        .map(|o| f64::from(s.x_centre(o.ix)) - 0.5 * vs)
-                        .fold(f64::INFINITY, f64::min);
-                    (x, sign * 90.0, 0.0)
-                }
-            }
+            let (distance, alpha) = step_toe(f, onset, a, y_ref);
+            (distance, sign * 90.0, alpha)
         }
+    }
+}
+
+/// A step's toe line: through the onsets' near edges (x = q·y + x0), read at
+/// `y_ref`, and its angle; with a single onset row, the nearest edge, square on.
+fn step_toe(f: &Frame, onset: &[Option<Onset>], a: Affected, y_ref: f64) -> (f64, f64) {
+    let s = f.spec;
+    let vs = f64::from(s.voxel_m);
+    let edges = || {
+        onset
+            .iter()
+            .enumerate()
+            .filter_map(move |(iy, o)| {
+                o.filter(|o| o.dir == a.dir && a.chosen(f, iy))
+                    .map(|o| (iy, o))
+            })
+            .map(move |(iy, o)| {
+                (
+                    f64::from(s.y_centre(iy)),
+                    f64::from(s.x_centre(o.ix)) - 0.5 * vs,
+                )
+            })
     };
-    let diagonal = alpha.abs() >= f.cfg.analysis.diagonal_min_deg;
-    let workcase = match (dir, use_left, use_right) {
-        (Dir::Up, true, true) => {
-            if diagonal {
-                7
-            } else {
-                2
-            }
-        }
-        (Dir::Up, true, false) => {
-            if diagonal {
-                4
-            } else {
-                3
-            }
-        }
-        (Dir::Up, _, _) => {
-            if diagonal {
-                6
-            } else {
-                5
-            }
-        }
-        (Dir::Down, true, true) => 8,
-        (Dir::Down, true, false) => 9,
-        (Dir::Down, _, _) => 10,
-    };
-    // The nearest seen ground in the affected strips: a toe before it is not seen.
-    let nearest_seen = (0..s.ny)
-        .filter(|&iy| chosen(iy))
+    let mut fit = PlaneFit::default();
+    for (y, x) in edges() {
+        // Fit x = q·y + x0 as a "plane" in (y, ·): reuse the line fit.
+        fit.add(y, 0.0, x, 1.0);
+    }
+    match fit.solve() {
+        Some(line) => (line.a * y_ref + line.c, (-line.a).atan().to_degrees()),
+        None => (edges().map(|(_, x)| x).fold(f64::INFINITY, f64::min), 0.0),
+    }
+}
+
+/// The workcase of a face: its direction, the tracks it affects, whether its toe
+/// line is diagonal (uphill only; downhill has no diagonal cases).
+fn workcase(a: Affected, diagonal: bool) -> u8 {
+    match (a.dir, a.left, a.right, diagonal) {
+        (Dir::Up, true, true, false) => 2,
+        (Dir::Up, true, true, true) => 7,
+        (Dir::Up, true, false, false) => 3,
+        (Dir::Up, true, false, true) => 4,
+        (Dir::Up, false, _, false) => 5,
+        (Dir::Up, false, _, true) => 6,
+        (Dir::Down, true, true, _) => 8,
+        (Dir::Down, true, false, _) => 9,
+        (Dir::Down, false, _, _) => 10,
+    }
+}
+
+/// The nearest seen ground in the affected strips, metres: a toe before it is not
+/// seen.
+fn nearest_seen(f: &Frame, a: Affected) -> f64 {
+    let s = f.spec;
+    let vs = f64::from(s.voxel_m);
+    (0..s.ny)
+        .filter(|&iy| a.chosen(f, iy))
         .filter_map(|iy| (0..s.nx).find(|&ix| f.seen[s.cell(ix, iy)]))
         .map(|ix| f64::from(s.x_centre(ix)) - 0.5 * vs)
-        .fold(f64::INFINITY, f64::min);
-    Feature {
-        workcase,
-        toe_seen: distance >= nearest_seen - vs,
-        distance_m: Some(distance as f32),
-        gradient_deg: Some(gradient as f32),
-        alpha_deg: matches!(workcase, 4 | 6 | 7).then_some(alpha as f32),
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::{self, Element, Extent, Terrain};
+    use crate::{Config, Pipeline};
+
+    /// The pipeline after analysing a clean frame of `elements` (default rig).
+    fn analysed(elements: Vec<Element>) -> Pipeline {
+        let config = Config::default();
+        let frame = sim::render(&Terrain::new(elements), &config);
+        let mut p = Pipeline::new(config).unwrap();
+        p.process(&frame).unwrap();
+        p
+    }
+
+    const LEFT_TRACK: Extent = Extent::Band {
+        from_m: 0.2,
+        to_m: 0.7,
+    };
+
+    #[test]
+    fn onsets_lie_where_each_track_strip_first_rises() {
+        let p = analysed(vec![Element::ramp(1.0, 0.0, 20.0, 0.0, Extent::Full)]);
+        let f = p.analyzer().frame(p.grid());
+        let mut onset = vec![None; f.spec.ny];
+        find_onsets(&f, &mut onset);
+        // 20° from x = 1.0: row 21 (1.05-1.10 m) has its mean at 1.075 m, 2.7 cm up,
+        // under the 3 cm threshold; row 22's mean (1.125 m) is 4.5 cm up.
+        for (iy, o) in onset.iter().enumerate() {
+            match f.region[iy] {
+                Region::Belly => assert_eq!(*o, None),
+                _ => assert_eq!(
+                    *o,
+                    Some(Onset {
+                        ix: 22,
+                        dir: Dir::Up
+                    }),
+                    "strip {iy}"
+                ),
+            }
+        }
+    }
+
+    #[test]
+    fn the_affected_tracks_are_those_whose_strips_rise() {
+        let p = analysed(vec![]);
+        let f = p.analyzer().frame(p.grid());
+        let mut onset = vec![None; f.spec.ny];
+        find_onsets(&f, &mut onset);
+        assert_eq!(affected_tracks(&f, &onset), None);
+
+        let p = analysed(vec![Element::ramp(1.0, 0.45, 15.0, 0.0, LEFT_TRACK)]);
+        let f = p.analyzer().frame(p.grid());
+        find_onsets(&f, &mut onset);
+        let a = affected_tracks(&f, &onset).unwrap();
+        assert_eq!((a.dir, a.left, a.right), (Dir::Up, true, false));
+    }
+
+    #[test]
+    fn two_different_faces_leave_the_nearer_one() {
+        let right = Extent::Band {
+            from_m: -0.7,
+            to_m: -0.2,
+        };
+        let p = analysed(vec![
+            Element::ramp(1.0, 0.45, 15.0, 0.0, LEFT_TRACK),
+            Element::ramp(1.5, -0.45, 22.0, 0.0, right),
+        ]);
+        let f = p.analyzer().frame(p.grid());
+        let mut onset = vec![None; f.spec.ny];
+        let mut use_cell = vec![false; f.spec.cell_count()];
+        find_onsets(&f, &mut onset);
+        let both = affected_tracks(&f, &onset).unwrap();
+        assert!(both.left && both.right);
+        let a = one_face_or_nearer(&f, &onset, &mut use_cell, both);
+        assert!(a.left && !a.right, "{a:?}");
+    }
+
+    #[test]
+    fn the_face_fit_recovers_the_ramp_and_its_toe_line() {
+        let p = analysed(vec![Element::ramp(1.2, 0.0, 18.0, 20.0, Extent::Full)]);
+        let f = p.analyzer().frame(p.grid());
+        let mut onset = vec![None; f.spec.ny];
+        let mut use_cell = vec![false; f.spec.cell_count()];
+        find_onsets(&f, &mut onset);
+        let plane = fit_face(&f, &onset, &mut use_cell, Dir::Up, true, true).unwrap();
+        assert!((plane.gradient_deg() - 18.0).abs() < 0.3, "{plane:?}");
+        assert!((plane.toe_x(0.0) - 1.2).abs() < 0.01, "{plane:?}");
+        assert!(((plane.b / plane.a).atan().to_degrees() - 20.0).abs() < 0.5);
+    }
+
+    #[test]
+    fn a_low_steps_toe_line_runs_through_the_onsets_near_edges() {
+        let step = Element::Step {
+            x_m: 1.3,
+            height_m: 0.08,
+            extent: Extent::Full,
+        };
+        let p = analysed(vec![step]);
+        let f = p.analyzer().frame(p.grid());
+        let mut onset = vec![None; f.spec.ny];
+        find_onsets(&f, &mut onset);
+        let a = affected_tracks(&f, &onset).unwrap();
+        let (x, alpha) = step_toe(&f, &onset, a, 0.0);
+        assert!((x - 1.3).abs() < 0.03 && alpha.abs() < 0.5, "{x} {alpha}");
+    }
+
+    #[test]
+    fn workcases_follow_direction_tracks_and_diagonal() {
+        let a = |dir, left, right| Affected { dir, left, right };
+        assert_eq!(workcase(a(Dir::Up, true, true), false), 2);
+        assert_eq!(workcase(a(Dir::Up, true, false), false), 3);
+        assert_eq!(workcase(a(Dir::Up, true, false), true), 4);
+        assert_eq!(workcase(a(Dir::Up, false, true), false), 5);
+        assert_eq!(workcase(a(Dir::Up, false, true), true), 6);
+        assert_eq!(workcase(a(Dir::Up, true, true), true), 7);
+        assert_eq!(workcase(a(Dir::Down, true, true), true), 8);
+        assert_eq!(workcase(a(Dir::Down, true, false), false), 9);
+        assert_eq!(workcase(a(Dir::Down, false, true), false), 10);
     }
 }

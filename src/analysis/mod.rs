@@ -57,6 +57,15 @@ pub(crate) struct StripCell {
 /// Per-frame analysis state, sized once from the configuration.
 #[derive(Debug, Clone)]
 pub struct Analyzer {
+    fixed: Fixed,
+    view: View,
+    scratch: Scratch,
+}
+
+/// What is fixed per configuration: the corridor's bands, the cells the camera
+/// should see on flat ground, the lines of sight to them.
+#[derive(Debug, Clone)]
+struct Fixed {
     cfg: Config,
     spec: GridSpec,
     region: Vec<Region>,
@@ -64,11 +73,21 @@ pub struct Analyzer {
     expected_count: usize,
     camera: [f32; 3],
     paths: visibility::ShadowPaths,
-    // Scratch, reused every frame.
+}
+
+/// What the camera saw of each cell this frame, and what it could not have seen
+/// (indexed by [`GridSpec::cell`]; see [`Frame`]).
+#[derive(Debug, Clone)]
+struct View {
     seen: Vec<bool>,
     shadowed: Vec<bool>,
     beyond: Vec<bool>,
     past: Vec<bool>,
+}
+
+/// Scratch space of the analysis steps, reused every frame.
+#[derive(Debug, Clone)]
+struct Scratch {
     strip: Vec<StripCell>,
     values: Vec<f32>,
     track_ref: Vec<[f32; 2]>,
@@ -100,7 +119,23 @@ pub(crate) struct Frame<'a> {
     pub camera: [f32; 3],
 }
 
-impl Frame<'_> {
+impl<'a> Frame<'a> {
+    /// The frame `grid` holds, as `view` saw it.
+    fn new(fixed: &'a Fixed, view: &'a View, grid: &'a VoxelGrid) -> Self {
+        Frame {
+            spec: &fixed.spec,
+            cells: grid.cells(),
+            seen: &view.seen,
+            shadowed: &view.shadowed,
+            past: &view.past,
+            beyond: &view.beyond,
+            expected: &fixed.expected,
+            region: &fixed.region,
+            cfg: &fixed.cfg,
+            camera: fixed.camera,
+        }
+    }
+
     /// Strips (iy) of one region.
     pub fn strips(&self, r: Region) -> impl Iterator<Item = usize> + '_ {
         self.region
@@ -136,25 +171,32 @@ impl Analyzer {
                 "the camera, as mounted, sees none of the corridor on flat ground; check [mount] and [camera]".into(),
             ));
         }
+        let cells = spec.cell_count();
         Ok(Analyzer {
-            cfg: config.clone(),
-            spec,
-            region,
-            expected,
-            expected_count,
-            camera: projector.origin(),
-            paths,
-            seen: vec![false; spec.cell_count()],
-            shadowed: vec![false; spec.cell_count()],
-            beyond: vec![false; spec.cell_count()],
-            past: vec![false; spec.cell_count()],
-            strip: Vec::with_capacity(spec.nx),
-            values: Vec::with_capacity(spec.ny),
-            track_ref: vec![[f32::NAN; 2]; spec.nx],
-            surface: vec![f32::NAN; spec.cell_count()],
-            profile: vec![[f32::NAN; 2]; spec.nx],
-            onset: vec![None; spec.ny],
-            use_cell: vec![false; spec.cell_count()],
+            fixed: Fixed {
+                cfg: config.clone(),
+                spec,
+                region,
+                expected,
+                expected_count,
+                camera: projector.origin(),
+                paths,
+            },
+            view: View {
+                seen: vec![false; cells],
+                shadowed: vec![false; cells],
+                beyond: vec![false; cells],
+                past: vec![false; cells],
+            },
+            scratch: Scratch {
+                strip: Vec::with_capacity(spec.nx),
+                values: Vec::with_capacity(spec.ny),
+                track_ref: vec![[f32::NAN; 2]; spec.nx],
+                surface: vec![f32::NAN; cells],
+                profile: vec![[f32::NAN; 2]; spec.nx],
+                onset: vec![None; spec.ny],
+                use_cell: vec![false; cells],
+            },
         })
     }
 
@@ -162,23 +204,24 @@ impl Analyzer {
     /// cell past the horizon, or the far edge of its last expected cell; the nearest
     /// over the band's strips.
     fn seen_to(&self) -> SeenTo {
-        let s = &self.spec;
+        let (fx, v) = (&self.fixed, &self.view);
+        let s = &fx.spec;
         let mut out = [f32::INFINITY; 3];
         for iy in 0..s.ny {
             let mut last = None;
             let mut to = None;
             for ix in 0..s.nx {
                 let c = s.cell(ix, iy);
-                if !self.expected[c] {
+                if !fx.expected[c] {
                     continue;
                 }
-                if self.past[c] {
+                if v.past[c] {
                     to = Some(s.x_centre(ix) - 0.5 * s.voxel_m);
                     break;
                 }
                 last = Some(s.x_centre(ix) + 0.5 * s.voxel_m);
             }
-            let k = match self.region[iy] {
+            let k = match fx.region[iy] {
                 Region::Left => 0,
                 Region::Belly => 1,
                 Region::Right => 2,
@@ -197,121 +240,146 @@ impl Analyzer {
 
     /// Cells the camera should see on flat ground, indexed by [`GridSpec::cell`].
     pub fn expected(&self) -> &[bool] {
-        &self.expected
+        &self.fixed.expected
     }
 
     /// The region of each strip iy.
     pub fn regions(&self) -> &[Region] {
-        &self.region
+        &self.fixed.region
     }
 
     /// Analyse the grid's cells into `verdict` (decision, feature, hazards, seen
-    /// fraction, crossing and feature timings).
+    /// fraction, tilt, crossing and feature timings): what was seen and what could
+    /// not be, the crossing tests, the decision, and for a go the feature.
     pub fn analyze(&mut self, grid: &VoxelGrid, verdict: &mut Verdict) {
         let t0 = Instant::now();
         verdict.hazards.clear();
         verdict.feature = None;
-        let min_pts = self.cfg.analysis.min_points_per_cell;
-        let mut seen_expected = 0usize;
-        let mut nearest_unseen = f32::INFINITY;
-        for (i, (s, c)) in self.seen.iter_mut().zip(grid.cells()).enumerate() {
-            *s = c.n >= min_pts;
-            if self.expected[i] {
-                if *s {
-                    seen_expected += 1;
-                } else {
-                    let ix = i / self.spec.ny;
-                    nearest_unseen = nearest_unseen.min(ix as f32 * self.spec.voxel_m);
-                }
-            }
-        }
-        verdict.seen_fraction = seen_expected as f32 / self.expected_count as f32;
-        // Unseen cells past the sensor's horizon (the surface left the image in front
-        // of them) and unseen cells hidden behind something seen: the camera could not
-        // see them.
-        let cut = grid.cut();
-        // Past the horizon: a cell the top edge cuts, every cell behind one along its
-        // strip, and every cell whose line of sight crosses one. Most frames cut no
-        // cell (the top rows look past the corridor): then nothing is past.
-        let any_cut = cut.contains(&true);
-        for iy in 0..self.spec.ny {
-            let mut past = false;
-            for ix in 0..self.spec.nx {
-                let i = self.spec.cell(ix, iy);
-                past |= cut[i];
-                self.past[i] = past || (any_cut && self.expected[i] && self.paths.crosses(i, cut));
-            }
-        }
-        let mut hidden = 0usize;
-        for i in 0..self.shadowed.len() {
-            let unseen = self.expected[i] && !self.seen[i];
-            self.beyond[i] = unseen && self.past[i];
-            self.shadowed[i] =
-                unseen && !self.beyond[i] && self.paths.shadowed(i, &self.seen, grid.cells());
-            hidden += usize::from(self.beyond[i] || self.shadowed[i]);
-        }
-        let visible = self.expected_count - hidden;
+        let (seen_expected, nearest_unseen) = self.mark_seen(grid);
+        verdict.seen_fraction = seen_expected as f32 / self.fixed.expected_count as f32;
+        self.mark_past(grid.cut());
+        let visible = self.fixed.expected_count - self.mark_hidden(grid);
         verdict.seen_to_m = self.seen_to();
+        let frame = Frame::new(&self.fixed, &self.view, grid);
+        let scratch = &mut self.scratch;
+        crossing::steps_and_slopes(&frame, &mut scratch.strip, &mut scratch.surface, verdict);
+        tilt::track_profile(
+            &frame,
+            &scratch.surface,
+            &mut scratch.values,
+            &mut scratch.profile,
+        );
+        tilt::fill(&mut scratch.profile, |ix| frame.spec.x_centre(ix));
+        verdict.tilt = tilt::predict(&frame, &scratch.profile, verdict);
+        crossing::belly(&frame, &mut scratch.values, &mut scratch.track_ref, verdict);
+        crossing::gaps(&frame, verdict);
+        let t1 = Instant::now();
+        verdict.timing_us.crossing = (t1 - t0).as_secs_f32() * 1e6;
+
+        // Too little seen of what nothing hides: the camera is blind, not occluded.
         let seen_of_visible = if visible == 0 {
             0.0
         } else {
             seen_expected as f32 / visible as f32
         };
-        let frame = Frame {
-            spec: &self.spec,
-            cells: grid.cells(),
-            seen: &self.seen,
-            shadowed: &self.shadowed,
-            past: &self.past,
-            beyond: &self.beyond,
-            expected: &self.expected,
-            region: &self.region,
-            cfg: &self.cfg,
-            camera: self.camera,
-        };
-        crossing::steps_and_slopes(&frame, &mut self.strip, &mut self.surface, verdict);
-        tilt::track_profile(&frame, &self.surface, &mut self.values, &mut self.profile);
-        tilt::fill(&mut self.profile, |ix| self.spec.x_centre(ix));
-        verdict.tilt = tilt::predict(&frame, &self.profile, verdict);
-        crossing::belly(&frame, &mut self.values, &mut self.track_ref, verdict);
-        crossing::gaps(&frame, verdict);
-        let t1 = Instant::now();
-        verdict.timing_us.crossing = (t1 - t0).as_secs_f32() * 1e6;
-
-        let stop = verdict
-            .hazards
-            .iter()
-            .any(|h| h.kind != HazardKind::Unknown);
-        // Too little seen of what nothing hides: the camera is blind, not occluded.
-        let too_little = seen_of_visible < self.cfg.analysis.min_seen_fraction as f32;
-        if too_little {
-            verdict.add_hazard(Hazard {
-                kind: HazardKind::Unknown,
-                side: Side::Centre,
-                distance_m: if nearest_unseen.is_finite() {
-                    nearest_unseen
-                } else {
-                    0.0
-                },
-            });
-        }
-        verdict
-            .hazards
-            .sort_unstable_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
-        verdict.decision = if stop {
-            Decision::Stop
-        } else if too_little || !verdict.hazards.is_empty() {
-            Decision::Unknown
-        } else {
-            Decision::Go
-        };
+        let too_little = seen_of_visible < frame.cfg.analysis.min_seen_fraction as f32;
+        decide(verdict, too_little, nearest_unseen);
         if verdict.decision == Decision::Go {
             verdict.feature = Some(feature::analyse(
                 &frame,
-                &mut self.onset,
-                &mut self.use_cell,
+                &mut scratch.onset,
+                &mut scratch.use_cell,
             ));
         }
         verdict.timing_us.feature = t1.elapsed().as_secs_f32() * 1e6;
     }
+
+    /// Which cells have enough points to count as seen; of the expected ones, how
+    /// many are seen and the nearest row start (metres) of an unseen one.
+    fn mark_seen(&mut self, grid: &VoxelGrid) -> (usize, f32) {
+        let fx = &self.fixed;
+        let min_pts = fx.cfg.analysis.min_points_per_cell;
+        let mut seen_expected = 0usize;
+        let mut nearest_unseen = f32::INFINITY;
+        for (i, (s, c)) in self.view.seen.iter_mut().zip(grid.cells()).enumerate() {
+            *s = c.n >= min_pts;
+            if fx.expected[i] {
+                if *s {
+                    seen_expected += 1;
+                } else {
+                    let ix = i / fx.spec.ny;
+                    nearest_unseen = nearest_unseen.min(ix as f32 * fx.spec.voxel_m);
+                }
+            }
+        }
+        (seen_expected, nearest_unseen)
+    }
+
+    /// Past the sensor's horizon: a cell the image's top edge cuts (`cut`), every
+    /// cell behind one along its strip, and every cell whose line of sight crosses
+    /// one. Most frames cut no cell (the top rows look past the corridor): then
+    /// nothing is past.
+    fn mark_past(&mut self, cut: &[bool]) {
+        let fx = &self.fixed;
+        let any_cut = cut.contains(&true);
+        for iy in 0..fx.spec.ny {
+            let mut past = false;
+            for ix in 0..fx.spec.nx {
+                let i = fx.spec.cell(ix, iy);
+                past |= cut[i];
+                self.view.past[i] = past || (any_cut && fx.expected[i] && fx.paths.crosses(i, cut));
+            }
+        }
+    }
+
+    /// Unseen expected cells the camera could not have seen: past the horizon
+    /// (beyond view) or in the shadow of something seen. Returns how many.
+    fn mark_hidden(&mut self, grid: &VoxelGrid) -> usize {
+        let (fx, v) = (&self.fixed, &mut self.view);
+        let mut hidden = 0usize;
+        for i in 0..v.shadowed.len() {
+            let unseen = fx.expected[i] && !v.seen[i];
+            v.beyond[i] = unseen && v.past[i];
+            v.shadowed[i] = unseen && !v.beyond[i] && fx.paths.shadowed(i, &v.seen, grid.cells());
+            hidden += usize::from(v.beyond[i] || v.shadowed[i]);
+        }
+        hidden
+    }
+
+    /// The frame as the last [`Analyzer::analyze`] saw it (for tests of the steps).
+    #[cfg(test)]
+    pub(crate) fn frame<'a>(&'a self, grid: &'a VoxelGrid) -> Frame<'a> {
+        Frame::new(&self.fixed, &self.view, grid)
+    }
+}
+
+/// The decision from the hazards found: stop for any but unknown ground; unknown
+/// for unknown ground or too little seen (then an `unknown` hazard at the nearest
+/// unseen row); else go. Hazards end nearest first.
+fn decide(verdict: &mut Verdict, too_little: bool, nearest_unseen: f32) {
+    let stop = verdict
+        .hazards
+        .iter()
+        .any(|h| h.kind != HazardKind::Unknown);
+    if too_little {
+        verdict.add_hazard(Hazard {
+            kind: HazardKind::Unknown,
+            side: Side::Centre,
+            distance_m: if nearest_unseen.is_finite() {
+                nearest_unseen
+            } else {
+                0.0
+            },
+        });
+    }
+    verdict
+        .hazards
+        .sort_unstable_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
+    verdict.decision = if stop {
+        Decision::Stop
+    } else if too_little || !verdict.hazards.is_empty() {
+        Decision::Unknown
+    } else {
+        Decision::Go
+    };
 }
