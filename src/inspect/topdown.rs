@@ -183,52 +183,79 @@ pub fn workcase_name(w: u8) -> &'static str {
 
 /// The verdict and the legend, to the right of the map.
 fn panel(c: &mut Canvas, scene: &Scene<'_>, x: i32) {
-    let v = scene.verdict;
+    let mut at = Lines { x, y: TOP };
+    decision_badge(c, scene.verdict, &mut at);
+    verdict_lines(c, scene, &mut at);
+    legend(c, x, at.y + 16);
+}
+
+/// Where the next line of the panel goes.
+struct Lines {
+    x: i32,
+    y: i32,
+}
+
+impl Lines {
+    /// One line of body text, then move down.
+    fn line(&mut self, c: &mut Canvas, s: &str) {
+        c.text(s, self.x, self.y, BODY, rgb(0, 0, 0));
+        self.y += 17;
+    }
+}
+
+/// The frame number and the decision as a coloured badge.
+fn decision_badge(c: &mut Canvas, v: &crate::Verdict, at: &mut Lines) {
     let (word, colour) = match v.decision {
         Decision::Go => ("GO", rgb(0, 150, 0)),
         Decision::Stop => ("STOP", rgb(210, 0, 0)),
         Decision::Unknown => ("UNKNOWN (stop)", rgb(220, 120, 0)),
     };
-    let mut y = TOP;
-    c.text(&format!("frame {}", v.frame), x, y, BODY, rgb(60, 60, 60));
-    y += 20;
-    c.fill(x - 4, y - 4, word.len() as u32 * 10 + 8, 28, colour);
-    c.text(word, x, y, LARGE, rgb(255, 255, 255));
-    y += 36;
-    let line = |c: &mut Canvas, s: &str, y: &mut i32| {
-        c.text(s, x, *y, BODY, rgb(0, 0, 0));
-        *y += 17;
-    };
+    let x = at.x;
+    c.text(
+        &format!("frame {}", v.frame),
+        x,
+        at.y,
+        BODY,
+        rgb(60, 60, 60),
+    );
+    at.y += 20;
+    c.fill(x - 4, at.y - 4, word.len() as u32 * 10 + 8, 28, colour);
+    c.text(word, x, at.y, LARGE, rgb(255, 255, 255));
+    at.y += 36;
+}
+
+/// The verdict in words: feature, seen fraction, hazards, the highest point of each
+/// band, the camera attitude used and the rover's limits.
+fn verdict_lines(c: &mut Canvas, scene: &Scene<'_>, at: &mut Lines) {
+    let v = scene.verdict;
     match v.feature {
         Some(f) if v.decision == Decision::Go => {
-            line(
+            at.line(
                 c,
                 &format!("workcase {}: {}", f.workcase, workcase_name(f.workcase)),
-                &mut y,
             );
             if let Some(d) = f.distance_m {
-                line(c, &format!("toe distance  {d:.2} m"), &mut y);
+                at.line(c, &format!("toe distance  {d:.2} m"));
             }
             if let Some(g) = f.gradient_deg {
-                line(c, &format!("gradient      {g:.1}°"), &mut y);
+                at.line(c, &format!("gradient      {g:.1}°"));
             }
             if let Some(a) = f.alpha_deg {
-                line(c, &format!("alpha         {a:.1}°"), &mut y);
+                at.line(c, &format!("alpha         {a:.1}°"));
             }
         }
         _ => {}
     }
-    line(
+    at.line(
         c,
         &format!("seen          {:.0} %", v.seen_fraction * 100.0),
-        &mut y,
     );
     if v.hazards.is_empty() {
-        line(c, "hazards: none", &mut y);
+        at.line(c, "hazards: none");
     } else {
-        line(c, "hazards (nearest first):", &mut y);
+        at.line(c, "hazards (nearest first):");
         for h in &v.hazards {
-            line(
+            at.line(
                 c,
                 &format!(
                     "  {} {} at {:.2} m",
@@ -236,7 +263,6 @@ fn panel(c: &mut Canvas, scene: &Scene<'_>, x: i32) {
                     format!("{:?}", h.side).to_lowercase(),
                     h.distance_m
                 ),
-                &mut y,
             );
         }
     }
@@ -247,7 +273,7 @@ fn panel(c: &mut Canvas, scene: &Scene<'_>, x: i32) {
             .reduce(f32::max)
             .map_or("-".to_string(), |z| format!("{z:.2}"))
     };
-    line(
+    at.line(
         c,
         &format!(
             "highest m: left {} belly {} right {}",
@@ -255,10 +281,9 @@ fn panel(c: &mut Canvas, scene: &Scene<'_>, x: i32) {
             highest(Side::Centre),
             highest(Side::Right)
         ),
-        &mut y,
     );
     let m = v.mount;
-    line(
+    at.line(
         c,
         &format!(
             "camera pitch {:.1}° roll {:.1}° ({})",
@@ -270,20 +295,20 @@ fn panel(c: &mut Canvas, scene: &Scene<'_>, x: i32) {
                 "config"
             }
         ),
-        &mut y,
     );
     let r = &scene.config.rover;
-    line(
+    at.line(
         c,
         &format!(
             "limits: step {:.2} m, belly {:.2} m, slope {:.0}°",
             r.wheel_radius_m, r.belly_clearance_m, r.max_slope_deg
         ),
-        &mut y,
     );
+}
 
-    // Legend.
-    y += 16;
+/// The colour bar of ground heights and the swatches of what the picture marks,
+/// from `y` down.
+fn legend(c: &mut Canvas, x: i32, mut y: i32) {
     c.text("ground height", x, y, BODY, rgb(0, 0, 0));
     y += 18;
     let bar_w = 200;

@@ -323,187 +323,19 @@ fn rocks<R: Rng>(rng: &mut R, n: usize, h: (f64, f64), x: (f64, f64)) -> Vec<Ele
 
 /// Draw a scene of `family` on `rig`.
 pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
-    let tc = 0.5 * (rig.config.rover.belly_half_width_m + rig.config.rover.track_outer_m);
-    let (bhw, outer) = (
-        rig.config.rover.belly_half_width_m,
-        rig.config.rover.track_outer_m,
-    );
-    let (near, far) = footprint(&rig.config);
-    let diagonal = |a: f64| a.abs() >= rig.config.analysis.diagonal_min_deg;
-    let left = rng.gen_bool(0.5);
-    let s = if left { 1.0 } else { -1.0 };
-    // The band of the left (or right) wheel track, side faces along both its edges.
-    let track_band = |left: bool| {
-        if left {
-            Extent::Band {
-                from_m: bhw,
-                to_m: outer,
-            }
-        } else {
-            Extent::Band {
-                from_m: -outer,
-                to_m: -bhw,
-            }
-        }
-    };
-    let band = track_band(left);
-    let half_plane = if left {
-        Extent::Band {
-            from_m: bhw,
-            to_m: 100.0,
-        }
-    } else {
-        Extent::Band {
-            from_m: -100.0,
-            to_m: -bhw,
-        }
-    };
-    // Toes where the rig sees the ground, or just below the image's bottom edge.
-    let toe_span = ((near - 0.15).max(0.45), (far - 0.6).clamp(0.8, 1.8));
+    let at = Setting::new(rng, &rig.config);
     let (elements, expect) = match family {
-        Family::OneTrackRamp => {
-            let g = rng.gen_range(15.0..25.0);
-            let a = toe_angle(rng) * s;
-            let d = rng.gen_range(toe_span.0..toe_span.1);
-            let cap = rng.gen_bool(0.3).then(|| rng.gen_range(0.2..0.4));
-            let wc = match (left, diagonal(a)) {
-                (true, false) => 3,
-                (true, true) => 4,
-                (false, false) => 5,
-                (false, true) => 6,
-            };
-            (
-                vec![Element::ramp(d, s * tc, g, a, band).capped(cap)],
-                go(wc, Some(d), Some(g), diagonal(a).then_some(a)),
-            )
-        }
-        Family::RampOutOfView => {
-            let g = rng.gen_range(15.0..26.0);
-            let d = rng.gen_range(toe_span.0..toe_span.1);
-            (
-                vec![Element::ramp(d, 0.0, g, 0.0, Extent::Full)],
-                go(2, Some(d), Some(g), None),
-            )
-        }
-        Family::HalfPlaneDescent => {
-            let g = -rng.gen_range(10.0..15.0);
-            let d = rng.gen_range(toe_span.0.max(0.9)..toe_span.1.max(1.0));
-            (
-                vec![Element::ramp(d, s * tc, g, 0.0, half_plane)],
-                go(if left { 9 } else { 10 }, Some(d), Some(g), None),
-            )
-        }
-        Family::OneTrackDescent => {
-            let g = -rng.gen_range(8.0..15.0);
-            let d = rng.gen_range(toe_span.0.max(0.9)..toe_span.1.max(1.0));
-            let cap = Some(rng.gen_range(0.12..0.25));
-            (
-                vec![Element::ramp(d, s * tc, g, 0.0, band).capped(cap)],
-                go(if left { 9 } else { 10 }, Some(d), Some(g), None),
-            )
-        }
-        Family::RoughFlat => (vec![rough(rng)], go(1, None, None, None)),
-        Family::RoughRamp => {
-            let d = rng.gen_range(toe_span.0.max(0.8)..toe_span.1.max(0.9));
-            let (g, wc) = if rng.gen_bool(0.6) {
-                (rng.gen_range(12.0..25.0), 2)
-            } else {
-                (-rng.gen_range(10.0..15.0), 8)
-            };
-            (
-                vec![rough(rng), Element::ramp(d, 0.0, g, 0.0, Extent::Full)],
-                go(wc, Some(d), Some(g), None),
-            )
-        }
-        Family::RockField => {
-            let n = rng.gen_range(3..8);
-            // Pebbles lie on flat or gently rough ground (±1 cm): on ±2.5 cm ground a
-            // 9 cm pebble on a bump beside a dip is a rise of more than a wheel radius.
-            let mut e = vec![Element::Rough {
-                amplitude_m: 0.01,
-                correlation_m: rng.gen_range(0.1..0.2),
-                seed: rng.gen(),
-            }];
-            e.extend(rocks(rng, n, (0.04, 0.09), (near.max(0.6), far.min(2.8))));
-            (e, go_any())
-        }
-        Family::RockFieldWithBoulder => {
-            let n = rng.gen_range(2..6);
-            let mut e = vec![rough(rng)];
-            e.extend(rocks(rng, n, (0.04, 0.09), (near.max(0.6), far.min(2.8))));
-            let height_m = rng.gen_range(0.15..0.2);
-            e.push(Element::Rock {
-                x_m: rng.gen_range(near.max(0.8)..(far - 0.3).clamp(1.0, 2.2)),
-                y_m: s * rng.gen_range(0.35..0.55),
-                radius_m: rng.gen_range(0.15..0.2),
-                height_m,
-            });
-            // A rock is a step or a slope, depending on its shape: either stops.
-            (e, stop_any())
-        }
-        Family::BellyRock => {
-            let tall = rng.gen_bool(0.5);
-            let height_m = if tall {
-                rng.gen_range(0.37..0.45)
-            } else {
-                rng.gen_range(0.22..0.27)
-            };
-            let rock = Element::Rock {
-                x_m: rng.gen_range(near.max(0.9)..(far - 0.3).clamp(1.0, 2.2)),
-                y_m: rng.gen_range(-0.04..0.04),
-                radius_m: rng.gen_range(0.12..0.17),
-                height_m,
-            };
-            let want = if tall {
-                stop(HazardKind::Belly)
-            } else {
-                go(1, None, None, None)
-            };
-            (vec![rock], want)
-        }
-        Family::TwoRamps => {
-            let d1 = rng.gen_range(toe_span.0..toe_span.1);
-            let d2 = d1 + rng.gen_range(0.3..0.6);
-            let (g1, g2) = (rng.gen_range(15.0..25.0), rng.gen_range(10.0..25.0));
-            (
-                vec![
-                    Element::ramp(d1, s * tc, g1, 0.0, band),
-                    Element::ramp(d2, -s * tc, g2, 0.0, track_band(!left)),
-                ],
-                go(if left { 3 } else { 5 }, Some(d1), Some(g1), None),
-            )
-        }
-        Family::RockOnRamp => {
-            let d = rng.gen_range(toe_span.0.max(0.8)..toe_span.1.max(0.9));
-            let big = rng.gen_bool(0.5);
-            // A pebble's front adds to the ramp's rise: keep the two within the
-            // climbable (a 6 cm pebble on an 18° ramp rises 11 cm in 14 cm).
-            let g = rng.gen_range(10.0..18.0);
-            let height_m = if big {
-                rng.gen_range(0.15..0.2)
-            } else {
-                rng.gen_range(0.03..0.06)
-            };
-            let rock = Element::Rock {
-                x_m: d + rng.gen_range(0.2..0.5),
-                y_m: s * rng.gen_range(0.35..0.55),
-                radius_m: if big {
-                    rng.gen_range(0.15..0.2)
-                } else {
-                    height_m * 1.5
-                },
-                height_m,
-            };
-            let want = if big {
-                stop_any()
-            } else {
-                go(2, Some(d), Some(g), None)
-            };
-            (
-                vec![Element::ramp(d, 0.0, g, 0.0, Extent::Full), rock],
-                want,
-            )
-        }
+        Family::OneTrackRamp => one_track_ramp(rng, &at),
+        Family::RampOutOfView => ramp_out_of_view(rng, &at),
+        Family::HalfPlaneDescent => half_plane_descent(rng, &at),
+        Family::OneTrackDescent => one_track_descent(rng, &at),
+        Family::RoughFlat => rough_flat(rng, &at),
+        Family::RoughRamp => rough_ramp(rng, &at),
+        Family::RockField => rock_field(rng, &at),
+        Family::RockFieldWithBoulder => rock_field_with_boulder(rng, &at),
+        Family::BellyRock => belly_rock(rng, &at),
+        Family::TwoRamps => two_ramps(rng, &at),
+        Family::RockOnRamp => rock_on_ramp(rng, &at),
     };
     let rough_ground = elements
         .iter()
@@ -520,4 +352,263 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
             (CLEAN, NOISY)
         },
     }
+}
+
+/// A family's scene: its terrain and what the analysis must make of it.
+type Scene = (Vec<Element>, Expectation);
+
+/// What every family draws in: the rig's corridor and footprint, and the side
+/// (left or right) drawn for one-sided scenes.
+struct Setting {
+    /// Centre line of the left track, metres (the right one's is its mirror).
+    tc: f64,
+    belly_half_width: f64,
+    track_outer: f64,
+    /// Nearest and farthest ground the rig sees, metres.
+    near: f64,
+    far: f64,
+    /// Toes where the rig sees the ground, or just below the image's bottom edge.
+    toe_span: (f64, f64),
+    /// Whether one-sided scenes go on the left, and its sign (+1 left, −1 right).
+    left: bool,
+    s: f64,
+    diagonal_min_deg: f64,
+}
+
+impl Setting {
+    fn new<R: Rng>(rng: &mut R, config: &Config) -> Self {
+        let (bhw, outer) = (config.rover.belly_half_width_m, config.rover.track_outer_m);
+        let (near, far) = footprint(config);
+        let left = rng.gen_bool(0.5);
+        Setting {
+            tc: 0.5 * (bhw + outer),
+            belly_half_width: bhw,
+            track_outer: outer,
+            near,
+            far,
+            toe_span: ((near - 0.15).max(0.45), (far - 0.6).clamp(0.8, 1.8)),
+            left,
+            s: if left { 1.0 } else { -1.0 },
+            diagonal_min_deg: config.analysis.diagonal_min_deg,
+        }
+    }
+
+    /// Whether a toe line at `a` degrees counts as diagonal.
+    fn diagonal(&self, a: f64) -> bool {
+        a.abs() >= self.diagonal_min_deg
+    }
+
+    /// The band of the left (or right) wheel track, side faces along both its edges.
+    fn track_band(&self, left: bool) -> Extent {
+        let (bhw, outer) = (self.belly_half_width, self.track_outer);
+        if left {
+            Extent::Band {
+                from_m: bhw,
+                to_m: outer,
+            }
+        } else {
+            Extent::Band {
+                from_m: -outer,
+                to_m: -bhw,
+            }
+        }
+    }
+
+    /// The drawn side's track band.
+    fn band(&self) -> Extent {
+        self.track_band(self.left)
+    }
+
+    /// Everything beyond the drawn side's inner track edge.
+    fn half_plane(&self) -> Extent {
+        let bhw = self.belly_half_width;
+        if self.left {
+            Extent::Band {
+                from_m: bhw,
+                to_m: 100.0,
+            }
+        } else {
+            Extent::Band {
+                from_m: -100.0,
+                to_m: -bhw,
+            }
+        }
+    }
+}
+
+/// A climbable ramp under one track, straight or diagonal, sometimes capped.
+fn one_track_ramp<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let g = rng.gen_range(15.0..25.0);
+    let a = toe_angle(rng) * at.s;
+    let d = rng.gen_range(at.toe_span.0..at.toe_span.1);
+    let cap = rng.gen_bool(0.3).then(|| rng.gen_range(0.2..0.4));
+    let wc = match (at.left, at.diagonal(a)) {
+        (true, false) => 3,
+        (true, true) => 4,
+        (false, false) => 5,
+        (false, true) => 6,
+    };
+    (
+        vec![Element::ramp(d, at.s * at.tc, g, a, at.band()).capped(cap)],
+        go(wc, Some(d), Some(g), at.diagonal(a).then_some(a)),
+    )
+}
+
+/// A full-width ramp rising out of the image.
+fn ramp_out_of_view<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let g = rng.gen_range(15.0..26.0);
+    let d = rng.gen_range(at.toe_span.0..at.toe_span.1);
+    (
+        vec![Element::ramp(d, 0.0, g, 0.0, Extent::Full)],
+        go(2, Some(d), Some(g), None),
+    )
+}
+
+/// Ground falling away beyond one track's inner edge.
+fn half_plane_descent<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let g = -rng.gen_range(10.0..15.0);
+    let d = rng.gen_range(at.toe_span.0.max(0.9)..at.toe_span.1.max(1.0));
+    (
+        vec![Element::ramp(d, at.s * at.tc, g, 0.0, at.half_plane())],
+        go(if at.left { 9 } else { 10 }, Some(d), Some(g), None),
+    )
+}
+
+/// A trench under one track: a descent capped at 12-25 cm.
+fn one_track_descent<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let g = -rng.gen_range(8.0..15.0);
+    let d = rng.gen_range(at.toe_span.0.max(0.9)..at.toe_span.1.max(1.0));
+    let cap = Some(rng.gen_range(0.12..0.25));
+    (
+        vec![Element::ramp(d, at.s * at.tc, g, 0.0, at.band()).capped(cap)],
+        go(if at.left { 9 } else { 10 }, Some(d), Some(g), None),
+    )
+}
+
+/// Rough ground, otherwise flat.
+fn rough_flat<R: Rng>(rng: &mut R, _at: &Setting) -> Scene {
+    (vec![rough(rng)], go(1, None, None, None))
+}
+
+/// A full-width ramp or descent on rough ground.
+fn rough_ramp<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let d = rng.gen_range(at.toe_span.0.max(0.8)..at.toe_span.1.max(0.9));
+    let (g, wc) = if rng.gen_bool(0.6) {
+        (rng.gen_range(12.0..25.0), 2)
+    } else {
+        (-rng.gen_range(10.0..15.0), 8)
+    };
+    (
+        vec![rough(rng), Element::ramp(d, 0.0, g, 0.0, Extent::Full)],
+        go(wc, Some(d), Some(g), None),
+    )
+}
+
+/// Pebbles and rocks of 4-9 cm in the tracks on gently rough ground.
+fn rock_field<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let n = rng.gen_range(3..8);
+    // Pebbles lie on flat or gently rough ground (±1 cm): on ±2.5 cm ground a
+    // 9 cm pebble on a bump beside a dip is a rise of more than a wheel radius.
+    let mut e = vec![Element::Rough {
+        amplitude_m: 0.01,
+        correlation_m: rng.gen_range(0.1..0.2),
+        seed: rng.gen(),
+    }];
+    e.extend(rocks(
+        rng,
+        n,
+        (0.04, 0.09),
+        (at.near.max(0.6), at.far.min(2.8)),
+    ));
+    (e, go_any())
+}
+
+/// A rock field with one 15-20 cm rock in a track.
+fn rock_field_with_boulder<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let n = rng.gen_range(2..6);
+    let mut e = vec![rough(rng)];
+    e.extend(rocks(
+        rng,
+        n,
+        (0.04, 0.09),
+        (at.near.max(0.6), at.far.min(2.8)),
+    ));
+    let height_m = rng.gen_range(0.15..0.2);
+    e.push(Element::Rock {
+        x_m: rng.gen_range(at.near.max(0.8)..(at.far - 0.3).clamp(1.0, 2.2)),
+        y_m: at.s * rng.gen_range(0.35..0.55),
+        radius_m: rng.gen_range(0.15..0.2),
+        height_m,
+    });
+    // A rock is a step or a slope, depending on its shape: either stops.
+    (e, stop_any())
+}
+
+/// A rock under the belly, low enough to straddle or too tall.
+fn belly_rock<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let tall = rng.gen_bool(0.5);
+    let height_m = if tall {
+        rng.gen_range(0.37..0.45)
+    } else {
+        rng.gen_range(0.22..0.27)
+    };
+    let rock = Element::Rock {
+        x_m: rng.gen_range(at.near.max(0.9)..(at.far - 0.3).clamp(1.0, 2.2)),
+        y_m: rng.gen_range(-0.04..0.04),
+        radius_m: rng.gen_range(0.12..0.17),
+        height_m,
+    };
+    let want = if tall {
+        stop(HazardKind::Belly)
+    } else {
+        go(1, None, None, None)
+    };
+    (vec![rock], want)
+}
+
+/// A different climbable ramp under each track.
+fn two_ramps<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let d1 = rng.gen_range(at.toe_span.0..at.toe_span.1);
+    let d2 = d1 + rng.gen_range(0.3..0.6);
+    let (g1, g2) = (rng.gen_range(15.0..25.0), rng.gen_range(10.0..25.0));
+    (
+        vec![
+            Element::ramp(d1, at.s * at.tc, g1, 0.0, at.band()),
+            Element::ramp(d2, -at.s * at.tc, g2, 0.0, at.track_band(!at.left)),
+        ],
+        go(if at.left { 3 } else { 5 }, Some(d1), Some(g1), None),
+    )
+}
+
+/// A pebble or a rock on a full-width ramp.
+fn rock_on_ramp<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let d = rng.gen_range(at.toe_span.0.max(0.8)..at.toe_span.1.max(0.9));
+    let big = rng.gen_bool(0.5);
+    // A pebble's front adds to the ramp's rise: keep the two within the
+    // climbable (a 6 cm pebble on an 18° ramp rises 11 cm in 14 cm).
+    let g = rng.gen_range(10.0..18.0);
+    let height_m = if big {
+        rng.gen_range(0.15..0.2)
+    } else {
+        rng.gen_range(0.03..0.06)
+    };
+    let rock = Element::Rock {
+        x_m: d + rng.gen_range(0.2..0.5),
+        y_m: at.s * rng.gen_range(0.35..0.55),
+        radius_m: if big {
+            rng.gen_range(0.15..0.2)
+        } else {
+            height_m * 1.5
+        },
+        height_m,
+    };
+    let want = if big {
+        stop_any()
+    } else {
+        go(2, Some(d), Some(g), None)
+    };
+    (
+        vec![Element::ramp(d, 0.0, g, 0.0, Extent::Full), rock],
+        want,
+    )
 }
