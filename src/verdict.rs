@@ -58,7 +58,7 @@ pub struct Hazard {
     pub distance_m: f32,
 }
 
-/// The obstacle feature of a passable corridor (paper §3.2, ARCHITECTURE.md).
+/// The obstacle feature of a passable corridor (paper §3.2; definitions in docs/design.md).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Feature {
     /// 1 flat; 2 uphill; 3/5 uphill left/right only; 4/6 diagonal uphill left/right;

@@ -1,4 +1,4 @@
-//! Crossing possibility (paper §3.1, with ARCHITECTURE.md's fixes): slopes and steps
+//! Crossing possibility (paper §3.1, with the fixes docs/design.md lists): slopes and steps
 //! in the wheel tracks, anything too tall under the belly, and ground that should be
 //! seen but is not (gaps, drop-offs).
 

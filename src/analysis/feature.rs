@@ -1,4 +1,4 @@
-//! Obstacle feature (paper §3.2, with ARCHITECTURE.md's definitions): which of the ten
+//! Obstacle feature (paper §3.2, with docs/design.md's definitions): which of the ten
 //! workcases the wheel tracks face, and the toe line's distance, the face's gradient
 //! and the toe line's angle.
 //!
