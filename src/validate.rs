@@ -19,30 +19,7 @@ use crate::sim::{self, catalogue, Expectation, KinectNoise, SceneConfig, Terrain
 use crate::verdict::Verdict;
 use crate::{Error, Pipeline};
 
-/// How far a measure may be off and still pass.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Tolerance {
-    /// Distance, metres.
-    pub distance_m: f64,
-    /// Gradient, degrees.
-    pub gradient_deg: f64,
-    /// Alpha, degrees.
-    pub alpha_deg: f64,
-}
-
-/// The bar on clean frames.
-pub const CLEAN: Tolerance = Tolerance {
-    distance_m: 0.01,
-    gradient_deg: 0.5,
-    alpha_deg: 1.0,
-};
-/// The bar with Kinect v1 noise.
-pub const NOISY: Tolerance = Tolerance {
-    distance_m: 0.03,
-    gradient_deg: 1.5,
-    alpha_deg: 3.0,
-};
+pub use crate::sim::{Tolerance, CLEAN, NOISY};
 
 /// The config of the fixtures that need the camera pitched 40° down.
 const PITCH40_CONFIG: &str = "# The default rover and Kinect, with the camera pitched 40° down so that\n# it sees ground from 0.43 m (the paper's left-side toe is at 0.474 m).\n[mount]\npitch_deg = 40.0\n";

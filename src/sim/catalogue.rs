@@ -3,6 +3,31 @@ use serde::{Deserialize, Serialize};
 use super::terrain::{Element, Extent, Terrain};
 use crate::verdict::{Decision, HazardKind};
 
+/// How far a measure may be off and still pass.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Tolerance {
+    /// Distance, metres.
+    pub distance_m: f64,
+    /// Gradient, degrees.
+    pub gradient_deg: f64,
+    /// Alpha, degrees.
+    pub alpha_deg: f64,
+}
+
+/// The bar on clean frames.
+pub const CLEAN: Tolerance = Tolerance {
+    distance_m: 0.01,
+    gradient_deg: 0.5,
+    alpha_deg: 1.0,
+};
+/// The bar with Kinect v1 noise.
+pub const NOISY: Tolerance = Tolerance {
+    distance_m: 0.03,
+    gradient_deg: 1.5,
+    alpha_deg: 3.0,
+};
+
 /// What a scene must give.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -13,8 +13,8 @@ use rand::Rng;
 
 use super::catalogue::Expectation;
 use super::terrain::{Element, Extent, Terrain};
+use super::{Tolerance, CLEAN, NOISY};
 use crate::config::Config;
-use crate::validate::{Tolerance, CLEAN, NOISY};
 use crate::verdict::{Decision, HazardKind};
 
 /// A family of random scenes.

@@ -8,7 +8,7 @@ mod noise;
 pub mod random;
 mod terrain;
 
-pub use catalogue::{catalogue, Expectation, Scene, SceneConfig};
+pub use catalogue::{catalogue, Expectation, Scene, SceneConfig, Tolerance, CLEAN, NOISY};
 pub use noise::KinectNoise;
 pub use terrain::{Element, Extent, HeightField, Terrain, ROUGH_WAVES};
 
