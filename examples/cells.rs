@@ -1,15 +1,21 @@
-//! Debug aid: print the ground-cell grid of one rendered scene (JSON terrain element
-//! on the command line), seen cells as heights in cm (`^` where the image's top edge
+//! Debug aid: print the ground-cell grid of one rendered scene (a JSON terrain element,
+//! or an array of them, on the command line), seen cells as heights in cm (`^` where the image's top edge
 //! cuts the cell), unseen expected cells as `?`. With `STRIP=IY` in the environment,
 //! also every cell of strip IY: mean, top, low, crest and foot heights, cut or not.
 use rover_terrain::sim::{self, Element, Terrain};
 use rover_terrain::{Config, Pipeline};
 
 fn main() {
-    let el: Element =
-        serde_json::from_str(&std::env::args().nth(1).expect("a terrain element as JSON")).unwrap();
+    let arg = std::env::args()
+        .nth(1)
+        .expect("a terrain element (or an array of them) as JSON");
+    let elements: Vec<Element> = if arg.trim_start().starts_with('[') {
+        serde_json::from_str(&arg).unwrap()
+    } else {
+        vec![serde_json::from_str(&arg).unwrap()]
+    };
     let config = Config::default();
-    let mut frame = sim::render(&Terrain::new(vec![el]), &config);
+    let mut frame = sim::render(&Terrain::new(elements), &config);
     if let Some(seed) = std::env::args().nth(2).and_then(|s| s.parse().ok()) {
         sim::KinectNoise {
             seed,

@@ -84,8 +84,10 @@ pub fn steps_and_slopes(
                     z,
                     ix,
                     past,
+                    wheel: z,
                 });
             }
+            wheel_heights(strip, r);
             strip_hazards(strip, region, r, tan_max, vs, verdict);
         }
     }
@@ -131,6 +133,40 @@ const FACE_OFF_VOXELS: f32 = 0.3;
 /// voxels.
 const SIDE_MIN_VOXELS: f32 = 0.2;
 
+/// Where a wheel of radius `r` rests on each cell of a strip: the lowest point of a
+/// wheel centred over the cell, held up by whatever stands within `r` of it along
+/// the strip (`z_j − (r − √(r² − dx²))`, the rim's height over a neighbour at dx).
+/// A dip narrower than the wheel is bridged and a pebble is climbed from the ground
+/// the wheel stands on, not from the bottom of the dip beside it; a step still rises
+/// by its full height within a wheel radius. Neighbours across a hole or past the
+/// horizon do not count (their heights are unknown or only bounds).
+fn wheel_heights(strip: &mut [StripCell], r: f32) {
+    for i in 0..strip.len() {
+        let (xi, mut h) = (strip[i].x, strip[i].z);
+        if !strip[i].past {
+            let rim = |j: usize| {
+                let dx = (strip[j].x - xi).abs();
+                (dx < r && !strip[j].past).then(|| strip[j].z - (r - (r * r - dx * dx).sqrt()))
+            };
+            for j in (0..i).rev() {
+                if strip[j + 1].ix > strip[j].ix + 1 {
+                    break;
+                }
+                let Some(z) = rim(j) else { break };
+                h = h.max(z);
+            }
+            for j in i + 1..strip.len() {
+                if strip[j].ix > strip[j - 1].ix + 1 {
+                    break;
+                }
+                let Some(z) = rim(j) else { break };
+                h = h.max(z);
+            }
+        }
+        strip[i].wheel = h;
+    }
+}
+
 /// Steps and slopes along one strip's seen cells (see [`steps_and_slopes`]).
 fn strip_hazards(
     strip: &[StripCell],
@@ -141,9 +177,9 @@ fn strip_hazards(
     verdict: &mut Verdict,
 ) {
     for (i, a) in strip.iter().enumerate() {
-        let (xi, zi) = (a.x, a.z);
+        let (xi, zi) = (a.x, a.wheel);
         for (j, b) in strip.iter().enumerate().skip(i + 1) {
-            let (xj, zj) = (b.x, b.z);
+            let (xj, zj) = (b.x, b.wheel);
             let (dx, dz) = (xj - xi, zj - zi);
             if dz.abs() <= r {
                 continue;
@@ -157,7 +193,7 @@ fn strip_hazards(
             if dx > 0.0 && dz.abs() >= tan_max * dx {
                 let kind = if dx <= 3.5 * vs {
                     Some((HazardKind::Step, 0.5 * (xi + xj)))
-                } else if sustained(&strip[i..=j]) {
+                } else if sustained(&strip[i..=j]) && fitted_slope(&strip[i..=j]) >= tan_max {
                     Some((HazardKind::Slope, xi))
                 } else {
                     None // flat, then a jump: a step, found from nearer cells
@@ -186,9 +222,19 @@ fn sustained(run: &[StripCell]) -> bool {
     let (Some(a), Some(b)) = (run.first(), run.last()) else {
         return false;
     };
-    let k = (b.z - a.z) / (b.x - a.x);
+    let k = (b.wheel - a.wheel) / (b.x - a.x);
     run.iter()
-        .all(|c| (c.z - (a.z + k * (c.x - a.x))).abs() <= SLOPE_STRAIGHTNESS_M)
+        .all(|c| (c.wheel - (a.wheel + k * (c.x - a.x))).abs() <= SLOPE_STRAIGHTNESS_M)
+}
+
+/// The least-squares slope |dz/dx| of a run's wheel heights: on rough ground the
+/// ends of a run may sit on a dip and a bump, steeper than the ground between.
+fn fitted_slope(run: &[StripCell]) -> f32 {
+    let mut fit = PlaneFit::default();
+    for c in run {
+        fit.add(f64::from(c.x), 0.0, f64::from(c.wheel), 1.0);
+    }
+    fit.solve().map_or(0.0, |p| p.a.abs() as f32)
 }
 
 /// How far a cell may sit off the line for a run to count as one slope, metres.
@@ -466,6 +512,43 @@ mod tests {
 
     const VS: f32 = 0.05;
     const MID: f32 = 0.675;
+
+    /// A strip of seen cells 5 cm apart at heights `z`.
+    fn strip(z: &[f32]) -> Vec<StripCell> {
+        z.iter()
+            .enumerate()
+            .map(|(i, &z)| StripCell {
+                x: 1.0 + 0.05 * i as f32,
+                z,
+                ix: 20 + i,
+                past: false,
+                wheel: z,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_wheel_bridges_a_dip_but_meets_a_step_in_full() {
+        let r = 0.11;
+        // A 5 cm dip before a 9 cm pebble on flat ground: 14 cm from the dip's bottom,
+        // but the wheel resting over the dip is held up by the ground beside it.
+        let mut s = strip(&[0.0, 0.0, -0.05, 0.09, 0.0, 0.0]);
+        wheel_heights(&mut s, r);
+        assert!(s[2].wheel > -0.02, "{:?}", s[2]);
+        assert!((s[3].wheel - 0.09).abs() < 1e-6);
+        let rise = s[3].wheel - s.iter().map(|c| c.wheel).fold(f32::INFINITY, f32::min);
+        assert!(rise <= r, "the wheel climbs {rise} m");
+        // A 15 cm step: the wheel's lowest point still rises by all of it.
+        let mut s = strip(&[0.0, 0.0, 0.0, 0.0, 0.15, 0.15, 0.15, 0.15]);
+        wheel_heights(&mut s, r);
+        assert_eq!(s[0].wheel, 0.0);
+        assert!((s[7].wheel - s[0].wheel - 0.15).abs() < 1e-6);
+        // Across a hole nothing holds the wheel up.
+        let mut s = strip(&[0.0, 0.2]);
+        s[1].ix += 2;
+        wheel_heights(&mut s, r);
+        assert_eq!(s[0].wheel, 0.0);
+    }
 
     #[test]
     fn a_wall_along_the_strip_leaves_the_floor_as_ground() {

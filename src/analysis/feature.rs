@@ -153,18 +153,39 @@ fn fit_face(
     plane
 }
 
-/// Whether two faces fitted to one track each are one face: their heights agree
-/// within [`SAME_FACE_M`] at both track centres, at the distances where they rise.
-fn same_face(l: &Plane, r: &Plane, tc: f64) -> bool {
-    let x = 0.5 * (l.toe_x(tc) + r.toe_x(-tc)) + 0.3;
-    [tc, -tc].iter().all(|&y| {
-        (l.z(x, y) - r.z(x, y)).abs() <= SAME_FACE_M
-            && (l.z(x + 0.3, y) - r.z(x + 0.3, y)).abs() <= SAME_FACE_M
-    })
+/// How well a plane explains the cells `use_cell` marks: the sum of squared height
+/// residuals, metres², and the number of cells.
+fn residuals(f: &Frame, use_cell: &[bool], p: &Plane) -> (f64, usize) {
+    let mut sse = 0.0;
+    let mut n = 0;
+    for (c, cell) in f.cells.iter().enumerate().filter(|&(c, _)| use_cell[c]) {
+        let r = f64::from(height(f, c)) - p.z(f64::from(cell.x), f64::from(cell.y));
+        sse += r * r;
+        n += 1;
+    }
+    (sse, n)
 }
 
-/// How far two one-track fits of one face may disagree in height, metres.
-const SAME_FACE_M: f64 = 0.03;
+/// Whether the two tracks' cells lie on one face: the plane fitted to both explains
+/// them about as well as a plane per track does. `own` is the two one-track fits'
+/// summed squared residuals, `joint` the joint plane's over the same cells, `n` the
+/// cells: an F ratio of the three parameters the second plane adds against the
+/// per-cell variance left, under [`SAME_FACE_F`]. Two ramps with toes 0.3 m apart
+/// leave centimetres on every cell (F in the thousands); one face on rough ground
+/// leaves F in the tens to hundreds, its residuals correlated over many cells.
+fn same_face(own: f64, joint: f64, n: usize) -> bool {
+    let variance = (own / n.saturating_sub(6).max(1) as f64).max(FACE_NOISE_M * FACE_NOISE_M);
+    (joint - own).max(0.0) / 3.0 / variance <= SAME_FACE_F
+}
+
+/// The F ratio above which two one-track faces are different faces: 30 for
+/// independent cells, times the 16 cells a rough-ground correlation area spans
+/// (20 cm correlation length over 5 cm cells, squared), whose residuals move
+/// together and so count as one.
+const SAME_FACE_F: f64 = 30.0 * 16.0;
+/// Least per-cell height noise the F ratio assumes, metres (clean frames leave
+/// millimetres).
+const FACE_NOISE_M: f64 = 0.003;
 
 /// A track cell's ground height: its mean, or beside a face along its strip (a
 /// trench's wall, a ramp's side) the surface spread across the cell
@@ -313,8 +334,8 @@ fn affected_tracks(f: &Frame, onset: &[Option<Onset>]) -> Option<Affected> {
 }
 
 /// Both tracks rise (or fall): one face across both, or a different face under
-/// each? Fit each alone; if they disagree ([`same_face`]), the nearer one is the
-/// feature.
+/// each? Fit each alone and both together; if the one-track faces depart from the
+/// joint one ([`same_face`]), the nearer one is the feature.
 fn one_face_or_nearer(
     f: &Frame,
     onset: &[Option<Onset>],
@@ -325,11 +346,18 @@ fn one_face_or_nearer(
         return a;
     }
     let tc = track_centre(f);
-    let l = fit_face(f, onset, use_cell, a.dir, true, false);
-    let r = fit_face(f, onset, use_cell, a.dir, false, true);
-    if let (Some(l), Some(r)) = (l, r) {
-        if !same_face(&l, &r, tc) {
-            if l.toe_x(tc) <= r.toe_x(-tc) {
+    let Some(both) = fit_face(f, onset, use_cell, a.dir, true, true) else {
+        return a;
+    };
+    let mut one = |left: bool| {
+        let p = fit_face(f, onset, use_cell, a.dir, left, !left)?;
+        let (own, n) = residuals(f, use_cell, &p);
+        let (joint, _) = residuals(f, use_cell, &both);
+        Some((p, own, joint, n))
+    };
+    if let (Some(l), Some(r)) = (one(true), one(false)) {
+        if !same_face(l.1 + r.1, l.2 + r.2, l.3 + r.3) {
+            if l.0.toe_x(tc) <= r.0.toe_x(-tc) {
                 a.right = false;
             } else {
                 a.left = false;

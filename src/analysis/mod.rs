@@ -52,6 +52,10 @@ pub(crate) struct StripCell {
     pub ix: usize,
     /// Whether the cell is at or past the sensor's horizon ([`Frame::past`]).
     pub past: bool,
+    /// Where a wheel resting on the cell has its lowest point, metres: `z`, or
+    /// higher where a neighbour within a wheel radius holds the wheel up (see
+    /// `crossing::wheel_heights`).
+    pub wheel: f32,
 }
 
 /// Per-frame analysis state, sized once from the configuration.

@@ -504,16 +504,12 @@ fn rough_ramp<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
     )
 }
 
-/// Pebbles and rocks of 4-9 cm in the tracks on gently rough ground.
+/// Pebbles and rocks of 4-9 cm in the tracks on rough ground.
 fn rock_field<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
     let n = rng.gen_range(3..8);
-    // Pebbles lie on flat or gently rough ground (±1 cm): on ±2.5 cm ground a
-    // 9 cm pebble on a bump beside a dip is a rise of more than a wheel radius.
-    let mut e = vec![Element::Rough {
-        amplitude_m: 0.01,
-        correlation_m: rng.gen_range(0.1..0.2),
-        seed: rng.gen(),
-    }];
+    // On ±2.5 cm ground a 9 cm pebble on a bump beside a dip stands more than a
+    // wheel radius above the dip's bottom: the wheel bridges the dip.
+    let mut e = vec![rough(rng)];
     e.extend(rocks(
         rng,
         n,
