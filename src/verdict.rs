@@ -54,7 +54,9 @@ pub struct Hazard {
     pub kind: HazardKind,
     /// Where it is across the corridor.
     pub side: Side,
-    /// Forward distance from the rover origin to its near edge, metres.
+    /// Forward distance from the rover origin to its near edge, metres. For a step
+    /// or slope in a track, where the wheel meets it: up to a wheel radius before
+    /// the ground's own edge.
     pub distance_m: f32,
 }
 
