@@ -350,6 +350,16 @@ fn positive(key: &'static str, v: f64) -> Result<(), Invalid> {
     }
 }
 
+/// Positive and below `limit` (an angle short of a right or straight one).
+fn positive_below(key: &'static str, v: f64, limit: f64) -> Result<(), Invalid> {
+    positive(key, v)?;
+    if v < limit {
+        Ok(())
+    } else {
+        Err((key, format!("must be below {limit}, got {v}")))
+    }
+}
+
 impl CameraConfig {
     /// `[camera]`: image size, fields of view, range limits, intrinsics, source, rate.
     fn check(&self) -> Result<(), Invalid> {
@@ -378,10 +388,7 @@ impl CameraConfig {
             ("camera.hfov_deg", c.hfov_deg),
             ("camera.vfov_deg", c.vfov_deg),
         ] {
-            positive(key, fov)?;
-            if fov >= 180.0 {
-                return Err((key, format!("must be below 180, got {fov}")));
-            }
+            positive_below(key, fov, 180.0)?;
         }
         positive("camera.min_range_m", c.min_range_m)?;
         positive("camera.max_range_m", c.max_range_m)?;
@@ -465,13 +472,7 @@ impl RoverConfig {
         let r = self;
         positive("rover.wheel_radius_m", r.wheel_radius_m)?;
         positive("rover.belly_clearance_m", r.belly_clearance_m)?;
-        positive("rover.max_slope_deg", r.max_slope_deg)?;
-        if r.max_slope_deg >= 90.0 {
-            return Err((
-                "rover.max_slope_deg",
-                format!("must be below 90, got {}", r.max_slope_deg),
-            ));
-        }
+        positive_below("rover.max_slope_deg", r.max_slope_deg, 90.0)?;
         positive("rover.belly_half_width_m", r.belly_half_width_m)?;
         positive("rover.track_outer_m", r.track_outer_m)?;
         if r.track_outer_m <= r.belly_half_width_m {
@@ -489,10 +490,7 @@ impl RoverConfig {
             ("rover.max_pitch_deg", r.max_pitch_deg),
         ] {
             if let Some(v) = v {
-                positive(key, v)?;
-                if v >= 90.0 {
-                    return Err((key, format!("must be below 90, got {v}")));
-                }
+                positive_below(key, v, 90.0)?;
             }
         }
         Ok(())

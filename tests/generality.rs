@@ -4,26 +4,13 @@
 //! stops. Every frame is rendered here from its geometry; expectations come from the
 //! geometry and the rover's limits.
 
-use rover_terrain::sim::{self, Element, Extent, Terrain};
-use rover_terrain::{Config, Decision, HazardKind, Pipeline, Verdict};
+use rover_terrain::sim::{Element, Extent};
+use rover_terrain::{Config, Decision, HazardKind, Verdict};
 
-fn analyse(elements: Vec<Element>, config: &Config) -> Verdict {
-    let frame = sim::render(&Terrain::new(elements), config);
-    Pipeline::new(config.clone())
-        .unwrap()
-        .process(&frame)
-        .unwrap()
-        .clone()
-}
+#[path = "common/scenes.rs"]
+mod scenes;
 
-const LEFT_TRACK: Extent = Extent::Band {
-    from_m: 0.2,
-    to_m: 0.7,
-};
-const RIGHT_TRACK: Extent = Extent::Band {
-    from_m: -0.7,
-    to_m: -0.2,
-};
+use scenes::{analyse, LEFT_TRACK, RIGHT_TRACK};
 
 fn assert_go(v: &Verdict, wc: u8, d: f64, g: f64, alpha: Option<f64>) {
     assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);

@@ -2,22 +2,13 @@
 //! rendered ramps: reported in every verdict, a `tilt` stop only where the operator
 //! set a limit.
 
-use rover_terrain::sim::{self, Element, Extent, Terrain};
-use rover_terrain::{Config, Decision, HazardKind, Pipeline, Verdict};
+use rover_terrain::sim::{Element, Extent};
+use rover_terrain::{Config, Decision, HazardKind};
 
-fn analyse(elements: Vec<Element>, config: &Config) -> Verdict {
-    let frame = sim::render(&Terrain::new(elements), config);
-    Pipeline::new(config.clone())
-        .unwrap()
-        .process(&frame)
-        .unwrap()
-        .clone()
-}
+#[path = "common/scenes.rs"]
+mod scenes;
 
-const LEFT_TRACK: Extent = Extent::Band {
-    from_m: 0.2,
-    to_m: 0.7,
-};
+use scenes::{analyse, LEFT_TRACK};
 
 /// Centre line to centre line of the default tracks, metres.
 const SPACING: f64 = 0.9;
@@ -75,16 +66,9 @@ fn limits_stop_where_the_prediction_first_passes_them() {
     let one_track = vec![Element::ramp(toe, 0.45, g, 0.0, LEFT_TRACK)];
     let mut c = Config::default();
     c.rover.max_roll_deg = Some(10.0);
-    let v = analyse(one_track.clone(), &c);
-    assert_eq!(v.decision, Decision::Stop);
-    let h = v.hazards.first().unwrap();
-    assert_eq!(h.kind, HazardKind::Tilt);
     // Roll passes 10° where the left track is 0.9·tan 10° up.
     let at = toe + SPACING * 10f64.to_radians().tan() / g.to_radians().tan();
-    assert!(
-        (f64::from(h.distance_m) - at).abs() < 0.1,
-        "{h:?}, hand {at}"
-    );
+    assert_tilt_stop_at(one_track.clone(), &c, at);
     // A limit the terrain stays under changes nothing.
     c.rover.max_roll_deg = Some(45.0);
     assert_eq!(analyse(one_track, &c).decision, Decision::Go);
@@ -95,16 +79,21 @@ fn limits_stop_where_the_prediction_first_passes_them() {
     let full = vec![Element::ramp(toe, 0.0, g, 0.0, Extent::Full)];
     let mut c = Config::default();
     c.rover.max_pitch_deg = Some(10.0);
-    let v = analyse(full.clone(), &c);
+    let wb = c.rover.wheelbase_m;
+    let at = toe + wb * 10f64.to_radians().tan() / g.to_radians().tan();
+    assert_tilt_stop_at(full.clone(), &c, at);
+    c.rover.max_pitch_deg = Some(15.0);
+    assert_eq!(analyse(full, &c).decision, Decision::Go);
+}
+
+/// `elements` under `config` stop for tilt first, within 0.1 m of `at` (metres).
+fn assert_tilt_stop_at(elements: Vec<Element>, config: &Config, at: f64) {
+    let v = analyse(elements, config);
     assert_eq!(v.decision, Decision::Stop);
     let h = v.hazards.first().unwrap();
     assert_eq!(h.kind, HazardKind::Tilt);
-    let wb = c.rover.wheelbase_m;
-    let at = toe + wb * 10f64.to_radians().tan() / g.to_radians().tan();
     assert!(
         (f64::from(h.distance_m) - at).abs() < 0.1,
         "{h:?}, hand {at}"
     );
-    c.rover.max_pitch_deg = Some(15.0);
-    assert_eq!(analyse(full, &c).decision, Decision::Go);
 }

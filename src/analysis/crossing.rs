@@ -250,18 +250,7 @@ const SLOPE_STRAIGHTNESS_M: f32 = 0.03;
 pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdict: &mut Verdict) {
     let clearance = f.cfg.rover.belly_clearance_m as f32;
     let s = f.spec;
-    for (ix, row) in track_ref.iter_mut().enumerate() {
-        for (k, region) in [Region::Left, Region::Right].into_iter().enumerate() {
-            values.clear();
-            for iy in f.strips(region) {
-                let c = s.cell(ix, iy);
-                if f.seen[c] {
-                    values.push(f.cells[c].z);
-                }
-            }
-            row[k] = median(values);
-        }
-    }
+    track_medians(f, values, track_ref, |c| f.seen[c].then(|| f.cells[c].z));
     for ix in 0..s.nx {
         let mut reference = f32::NEG_INFINITY;
         let mut beyond_view = false;
@@ -310,8 +299,28 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
     }
 }
 
+/// Per cell row, each track's median height, `[left, right]`: the median over the
+/// track's strips of `height(cell)` where it is `Some` (NaN where none is).
+pub(crate) fn track_medians(
+    f: &Frame,
+    values: &mut Vec<f32>,
+    out: &mut [[f32; 2]],
+    height: impl Fn(usize) -> Option<f32>,
+) {
+    for (ix, row) in out.iter_mut().enumerate() {
+        for (k, region) in [Region::Left, Region::Right].into_iter().enumerate() {
+            values.clear();
+            values.extend(
+                f.strips(region)
+                    .filter_map(|iy| height(f.spec.cell(ix, iy))),
+            );
+            row[k] = median(values);
+        }
+    }
+}
+
 /// The median of `values` (sorted in place); NaN when empty.
-pub(crate) fn median(values: &mut [f32]) -> f32 {
+fn median(values: &mut [f32]) -> f32 {
     if values.is_empty() {
         return f32::NAN;
     }

@@ -228,15 +228,7 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
     let Some(affected) = affected_tracks(f, onset) else {
         return Feature::FLAT;
     };
-    let affected = one_face_or_nearer(f, onset, use_cell, affected);
-    let plane = fit_face(
-        f,
-        onset,
-        use_cell,
-        affected.dir,
-        affected.left,
-        affected.right,
-    );
+    let (affected, plane) = one_face_or_nearer(f, onset, use_cell, affected);
     let (distance, gradient, alpha) = measures(f, onset, plane, affected);
     let diagonal = alpha.abs() >= f.cfg.analysis.diagonal_min_deg;
     let workcase = workcase(affected, diagonal);
@@ -333,22 +325,21 @@ fn affected_tracks(f: &Frame, onset: &[Option<Onset>]) -> Option<Affected> {
     Some(Affected { dir, left, right })
 }
 
-/// Both tracks rise (or fall): one face across both, or a different face under
-/// each? Fit each alone and both together; if the one-track faces depart from the
-/// joint one ([`same_face`]), the nearer one is the feature.
+/// Step 3: the face's plane. Both tracks rise (or fall): one face across both, or a
+/// different face under each? Fit each alone and both together; if the one-track
+/// faces depart from the joint one ([`same_face`]), the nearer one is the feature.
+/// Returns the tracks the face affects and its plane (already fitted, reused).
 fn one_face_or_nearer(
     f: &Frame,
     onset: &[Option<Onset>],
     use_cell: &mut [bool],
     mut a: Affected,
-) -> Affected {
-    if !(a.left && a.right) {
-        return a;
-    }
-    let tc = track_centre(f);
-    let Some(both) = fit_face(f, onset, use_cell, a.dir, true, true) else {
-        return a;
+) -> (Affected, Option<Plane>) {
+    let both = fit_face(f, onset, use_cell, a.dir, a.left, a.right);
+    let Some(both) = both.filter(|_| a.left && a.right) else {
+        return (a, both);
     };
+    let tc = track_centre(f);
     let mut one = |left: bool| {
         let p = fit_face(f, onset, use_cell, a.dir, left, !left)?;
         let (own, n) = residuals(f, use_cell, &p);
@@ -357,14 +348,16 @@ fn one_face_or_nearer(
     };
     if let (Some(l), Some(r)) = (one(true), one(false)) {
         if !same_face(l.1 + r.1, l.2 + r.2, l.3 + r.3) {
-            if l.0.toe_x(tc) <= r.0.toe_x(-tc) {
+            return if l.0.toe_x(tc) <= r.0.toe_x(-tc) {
                 a.right = false;
+                (a, Some(l.0))
             } else {
                 a.left = false;
-            }
+                (a, Some(r.0))
+            };
         }
     }
-    a
+    (a, Some(both))
 }
 
 /// Centre line of the left track, metres (the right one's is its mirror).
@@ -534,8 +527,12 @@ mod tests {
         find_onsets(&f, &mut onset);
         let both = affected_tracks(&f, &onset).unwrap();
         assert!(both.left && both.right);
-        let a = one_face_or_nearer(&f, &onset, &mut use_cell, both);
+        let (a, plane) = one_face_or_nearer(&f, &onset, &mut use_cell, both);
         assert!(a.left && !a.right, "{a:?}");
+        // The face returned is the left ramp's: toe 1.0 m, 15°.
+        let plane = plane.unwrap();
+        assert!((plane.toe_x(0.45) - 1.0).abs() < 0.02, "{plane:?}");
+        assert!((plane.gradient_deg() - 15.0).abs() < 0.5, "{plane:?}");
     }
 
     #[test]

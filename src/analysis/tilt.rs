@@ -19,29 +19,19 @@
 //! twist). Nothing is predicted past the last seen row, nor in the blind zone behind
 //! the nearest seen ground beyond the interpolation from z = 0.
 
-use super::{Frame, Region};
+use super::Frame;
 use crate::verdict::{Hazard, HazardKind, Side, Tilt, Verdict};
 
 /// Per-row track heights, metres, `[left, right]`, NaN where unknown.
 pub(crate) type Profile = [[f32; 2]];
 
 /// Fill `profile` (one entry per cell row) with each track's height; `surface` holds,
-/// per cell, the height the step test followed (NaN where it followed none).
+/// per cell, the height the step test followed (NaN where it followed none: unseen
+/// or past the horizon).
 pub fn track_profile(f: &Frame, surface: &[f32], values: &mut Vec<f32>, profile: &mut Profile) {
-    let s = f.spec;
-    for (ix, row) in profile.iter_mut().enumerate() {
-        for (k, region) in [Region::Left, Region::Right].into_iter().enumerate() {
-            values.clear();
-            values.extend(
-                f.strips(region)
-                    .map(|iy| s.cell(ix, iy))
-                    .filter(|&c| !f.past[c])
-                    .map(|c| surface[c])
-                    .filter(|z| z.is_finite()),
-            );
-            row[k] = super::crossing::median(values);
-        }
-    }
+    super::crossing::track_medians(f, values, profile, |c| {
+        Some(surface[c]).filter(|z| z.is_finite())
+    });
 }
 
 /// Fill each track's unknown rows between known ones linearly in x, and the rows

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use rover_terrain_drivers::fakenect::{Registration, Session, SessionWriter};
 use rover_terrain_drivers::{CameraSpec, DepthFrame, FrameStatus};
 
 /// `record`'s arguments.
@@ -31,7 +32,6 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         seconds,
     } = args;
     let (camera, out) = (&camera, out.as_path());
-    use rover_terrain_drivers::fakenect::{Registration, Session, SessionWriter};
     anyhow::ensure!(
         frames.is_some() || seconds.is_some(),
         "give --frames N or --seconds S"

@@ -509,6 +509,11 @@ fn rock_field<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
     let n = rng.gen_range(3..8);
     // On ±2.5 cm ground a 9 cm pebble on a bump beside a dip stands more than a
     // wheel radius above the dip's bottom: the wheel bridges the dip.
+    (pebbles_on_rough_ground(rng, at, n), go_any())
+}
+
+/// Rough ground with `n` pebbles and rocks of 4-9 cm where the rig sees the tracks.
+fn pebbles_on_rough_ground<R: Rng>(rng: &mut R, at: &Setting, n: usize) -> Vec<Element> {
     let mut e = vec![rough(rng)];
     e.extend(rocks(
         rng,
@@ -516,19 +521,13 @@ fn rock_field<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
         (0.04, 0.09),
         (at.near.max(0.6), at.far.min(2.8)),
     ));
-    (e, go_any())
+    e
 }
 
 /// A rock field with one 15-20 cm rock in a track.
 fn rock_field_with_boulder<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
     let n = rng.gen_range(2..6);
-    let mut e = vec![rough(rng)];
-    e.extend(rocks(
-        rng,
-        n,
-        (0.04, 0.09),
-        (at.near.max(0.6), at.far.min(2.8)),
-    ));
+    let mut e = pebbles_on_rough_ground(rng, at, n);
     let height_m = rng.gen_range(0.15..0.2);
     e.push(Element::Rock {
         x_m: rng.gen_range(at.near.max(0.8)..(at.far - 0.3).clamp(1.0, 2.2)),

@@ -1,0 +1,28 @@
+//! Rendered scenes for the analysis tests: a frame of the terrain through the
+//! pipeline, and the default rover's wheel-track bands.
+
+use rover_terrain::sim::{self, Element, Extent, Terrain};
+use rover_terrain::{Config, Pipeline, Verdict};
+
+/// The verdict on a clean frame of `elements`, rendered and analysed with `config`.
+pub fn analyse(elements: Vec<Element>, config: &Config) -> Verdict {
+    let frame = sim::render(&Terrain::new(elements), config);
+    Pipeline::new(config.clone())
+        .unwrap()
+        .process(&frame)
+        .unwrap()
+        .clone()
+}
+
+/// The default rover's left wheel track, side faces along both its edges.
+pub const LEFT_TRACK: Extent = Extent::Band {
+    from_m: 0.2,
+    to_m: 0.7,
+};
+
+/// The default rover's right wheel track.
+#[allow(dead_code)] // not every test binary uses both
+pub const RIGHT_TRACK: Extent = Extent::Band {
+    from_m: -0.7,
+    to_m: -0.2,
+};
