@@ -2,7 +2,8 @@
 //! issue's bars, clean and with Kinect v1 noise:
 //! `cargo run --release --example sweep -- [workcases|hazards] [N] [SEED]`, or
 //! `-- families [N] [SEED] [default|random] [FAMILY-INDEX]` for the scene families of
-//! `sim::families` on the default rig or on random mounts and cameras.
+//! `sim::families` on the default rig or on random mounts and cameras. `ONLY=3,7`
+//! checks just those scenes of the sweep.
 
 use rand::SeedableRng;
 use rover_terrain::sim::{self, families, random, KinectNoise};
@@ -15,6 +16,10 @@ fn main() {
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(80);
     let seed: u64 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(1);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    // ONLY=i,j,... renders just those scenes (the draws before them still happen).
+    let only: Option<Vec<usize>> = std::env::var("ONLY")
+        .ok()
+        .map(|v| v.split(',').filter_map(|s| s.parse().ok()).collect());
     let (mut failures, mut total) = (0, 0);
     for i in 0..n {
         let mut tol = (CLEAN, NOISY);
@@ -42,6 +47,9 @@ fn main() {
                 (t, w, Config::default())
             }
         };
+        if only.as_ref().is_some_and(|o| !o.contains(&i)) {
+            continue;
+        }
         let mut pipeline = Pipeline::new(config.clone()).expect("config works");
         let frame = sim::render(&terrain, &config);
         for noisy in [false, true] {

@@ -218,3 +218,38 @@ fn random_scene_families_on_random_rigs_never_give_a_false_go() {
         .collect();
     assert!(failed.is_empty(), "{failed:#?}");
 }
+
+#[test]
+fn rough_ground_under_a_full_width_ramp_changes_no_verdict_and_keeps_the_measures() {
+    // ±2.5 cm bumps swing a wheel-radius run on a 24° ramp past 30°, and bias a face
+    // fit that keeps only cells over the rise threshold: neither may show.
+    // (Rough descents are left out: where the descent is seen at 8-12° incidence, near
+    // the corridor's end, bumps can hide whole cells and give a false drop-off there:
+    // a known false stop, see README.)
+    for seed in 1..=4u64 {
+        let rough = Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m: 0.1 + 0.03 * seed as f64,
+            seed,
+        };
+        let (toe, grad) = (
+            0.8 + 0.2 * seed as f64,
+            [24.5, 15.0, 24.0, 16.0][seed as usize - 1],
+        );
+        let ramp = Element::ramp(toe, 0.0, grad, 0.0, Extent::Full);
+        let v = analyse(vec![rough, ramp], &Config::default());
+        assert_eq!(v.decision, Decision::Go, "seed {seed}: {:?}", v.hazards);
+        let f = v.feature.expect("a go has a feature");
+        assert_eq!(f.workcase, 2, "seed {seed}");
+        let d = f64::from(f.distance_m.unwrap());
+        let g = f64::from(f.gradient_deg.unwrap());
+        assert!(
+            (d - toe).abs() <= 0.04,
+            "seed {seed}: distance {d}, toe {toe}"
+        );
+        assert!(
+            (g - grad).abs() <= 2.0,
+            "seed {seed}: gradient {g}, expected {grad}"
+        );
+    }
+}

@@ -41,6 +41,7 @@ pub fn steps_and_slopes(
     surface.fill(f32::NAN);
     let r = f.cfg.rover.wheel_radius_m as f32;
     let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
+    let wheelbase = f.cfg.rover.wheelbase_m as f32;
     let vs = f.spec.voxel_m;
     for region in [Region::Left, Region::Right] {
         for iy in f.strips(region) {
@@ -88,7 +89,7 @@ pub fn steps_and_slopes(
                 });
             }
             wheel_heights(strip, r);
-            strip_hazards(strip, region, r, tan_max, vs, verdict);
+            strip_hazards(strip, region, (r, tan_max, wheelbase), vs, verdict);
         }
     }
 }
@@ -171,8 +172,7 @@ fn wheel_heights(strip: &mut [StripCell], r: f32) {
 fn strip_hazards(
     strip: &[StripCell],
     region: Region,
-    r: f32,
-    tan_max: f32,
+    (r, tan_max, wheelbase): (f32, f32, f32),
     vs: f32,
     verdict: &mut Verdict,
 ) {
@@ -193,7 +193,8 @@ fn strip_hazards(
             if dx > 0.0 && dz.abs() >= tan_max * dx {
                 let kind = if dx <= 3.5 * vs {
                     Some((HazardKind::Step, 0.5 * (xi + xj)))
-                } else if sustained(&strip[i..=j]) && fitted_slope(&strip[i..=j]) >= tan_max {
+                } else if sustained(&strip[i..=j]) && climb_slope(strip, i, j, wheelbase) >= tan_max
+                {
                     Some((HazardKind::Slope, xi))
                 } else {
                     None // flat, then a jump: a step, found from nearer cells
@@ -226,6 +227,58 @@ fn sustained(run: &[StripCell]) -> bool {
     run.iter()
         .all(|c| (c.wheel - (a.wheel + k * (c.x - a.x))).abs() <= SLOPE_STRAIGHTNESS_M)
 }
+
+/// The slope |dz/dx| of the ground a run `strip[i..=j]` climbs. A run a wheel radius
+/// high is only 4-5 cells, where ±2.5 cm of roughness swings the slope by 5-10°: when
+/// a wheelbase of contiguous seen cells starting at the run's start, or ending at its
+/// end, lies on one line within rough ground's spread (RMS residual up to
+/// [`ROUGH_LINE_RMS_M`]), the ground is that line and its least-squares slope counts
+/// (the gentler of the two when both are lines). Otherwise the run's own: a short
+/// steep bank and the flat beside it are not one line, and keep their steepness.
+fn climb_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> f32 {
+    let short = fitted_slope(&strip[i..=j]);
+    let joined =
+        |k: usize| strip[k + 1].ix == strip[k].ix + 1 && !strip[k].past && !strip[k + 1].past;
+    let mut end = j;
+    while end + 1 < strip.len() && joined(end) && strip[end + 1].x - strip[i].x <= wheelbase {
+        end += 1;
+    }
+    // A run may end on a cell past the horizon (its height only a bound): the window
+    // behind it ends on the last cell seen whole.
+    let last = if strip[j].past && j > i { j - 1 } else { j };
+    let mut start = i;
+    while start > 0 && joined(start - 1) && strip[last].x - strip[start - 1].x <= wheelbase {
+        start -= 1;
+    }
+    [&strip[i..=end], &strip[start..=last]]
+        .into_iter()
+        .filter(|w| w.iter().all(|c| !c.past))
+        .filter(|w| w[w.len() - 1].x - w[0].x >= 0.9 * wheelbase)
+        .filter_map(line_slope)
+        .fold(short, f32::min)
+}
+
+/// The least-squares slope |dz/dx| of a run's wheel heights when they lie on one line
+/// within [`ROUGH_LINE_RMS_M`], else `None`.
+fn line_slope(run: &[StripCell]) -> Option<f32> {
+    let mut fit = PlaneFit::default();
+    for c in run {
+        fit.add(f64::from(c.x), 0.0, f64::from(c.wheel), 1.0);
+    }
+    let p = fit.solve()?;
+    let ms = run
+        .iter()
+        .map(|c| (f64::from(c.wheel) - p.z(f64::from(c.x), 0.0)).powi(2))
+        .sum::<f64>()
+        / run.len() as f64;
+    (ms.sqrt() <= f64::from(ROUGH_LINE_RMS_M)).then_some(p.a.abs() as f32)
+}
+
+/// Largest RMS distance of wheel heights from their line for [`climb_slope`] to take
+/// them as one slope, metres: rough ground's spread (σ ≈ 1.25 cm for ±2.5 cm), under
+/// what a bank steeper than the limit and shorter than the wheelbase leaves (≥ 1.5 cm
+/// for banks whose wheelbase fit falls under 30°).
+const ROUGH_LINE_RMS_M: f32 = 0.016;
 
 /// The least-squares slope |dz/dx| of a run's wheel heights: on rough ground the
 /// ends of a run may sit on a dip and a bump, steeper than the ground between.
@@ -534,6 +587,67 @@ mod tests {
                 wheel: z,
             })
             .collect()
+    }
+
+    /// The slope hazards `strip_hazards` reports on a strip at heights `z(x)`, x from
+    /// 1.0 m in 5 cm cells (wheel radius 0.11 m, limit 30°, wheelbase 0.6 m).
+    fn slopes(z: impl Fn(f32) -> f32) -> Vec<Hazard> {
+        let mut run = strip(&(0..30).map(|i| z(0.05 * i as f32)).collect::<Vec<_>>());
+        wheel_heights(&mut run, 0.11);
+        let mut v = Verdict::default();
+        strip_hazards(
+            &run,
+            Region::Left,
+            (0.11, 30f32.to_radians().tan(), 0.6),
+            VS,
+            &mut v,
+        );
+        v.hazards
+            .iter()
+            .copied()
+            .filter(|h| h.kind == HazardKind::Slope)
+            .collect()
+    }
+
+    /// A pseudo-random bump field of ±2.5 cm, correlated over ~10 cm.
+    fn rough(x: f32) -> f32 {
+        0.0125 * ((x * 41.0).sin() + (x * 67.0 + 1.3).sin()) + 0.005 * (x * 131.0).sin()
+    }
+
+    #[test]
+    fn rough_ground_on_a_climbable_slope_is_not_a_slope_hazard() {
+        let k = 25f32.to_radians().tan();
+        // The wheel-radius runs on the bumps are steeper than 30° somewhere...
+        let mut run = strip(
+            &(0..30)
+                .map(|i| k * 0.05 * i as f32 + rough(0.05 * i as f32))
+                .collect::<Vec<_>>(),
+        );
+        wheel_heights(&mut run, 0.11);
+        let steepest = run.windows(4).map(fitted_slope).fold(0.0, f32::max);
+        assert!(
+            steepest > 30f32.to_radians().tan(),
+            "{}",
+            steepest.atan().to_degrees()
+        );
+        // ...but the wheelbase they lie on is a 25° line.
+        assert!(slopes(|x| k * x + rough(x)).is_empty());
+    }
+
+    #[test]
+    fn slopes_past_the_limit_stop_long_or_short() {
+        for deg in [32f32, 35.0] {
+            let k = deg.to_radians().tan();
+            assert!(!slopes(|x| k * x).is_empty(), "{deg}° slope");
+            assert!(
+                !slopes(|x| k * x + rough(x)).is_empty(),
+                "rough {deg}° slope"
+            );
+        }
+        // A 34° bank 0.45 m long, then flat: its wheelbase fit is under 30°, but the
+        // bank and the flat are not one line.
+        let k = 34f32.to_radians().tan();
+        assert!(!slopes(|x| k * x.clamp(0.3, 0.75)).is_empty());
     }
 
     #[test]

@@ -55,6 +55,11 @@ fn chosen(region: Region, use_left: bool, use_right: bool) -> bool {
     }
 }
 
+/// How many cells before a strip's onset the face fit may take from the band where
+/// the plane runs under the rise threshold: the band of a face steeper than ~12°
+/// (the threshold over the gradient), not the flat before a low step.
+const TOE_BAND_CELLS: usize = 3;
+
 /// Step 3: fit the face of the chosen tracks as a plane (see the module doc).
 fn fit_face(
     f: &Frame,
@@ -100,6 +105,19 @@ fn fit_face(
                 }
             })
     };
+    // Once the plane is known, the cells where it runs between the ground and the rise
+    // threshold (the band along its toe, up to TOE_BAND_CELLS before the strip's
+    // onset) take part whatever their height: keeping only those over the threshold
+    // would keep rough ground's bumps there and drop its dips, lifting the face's
+    // foot and pulling the toe nearer.
+    let toe_band = |p: &Plane, ix: usize, iy: usize| {
+        let c = s.cell(ix, iy);
+        let cell = &f.cells[c];
+        p.z(f64::from(cell.x), f64::from(cell.y)).abs() < f64::from(threshold)
+            && chosen(iy)
+            && matches!(onset[iy], Some(o) if o.dir == dir && ix + TOE_BAND_CELLS >= o.ix)
+            && f.seen[c]
+    };
     let mut plane: Option<Plane> = None;
     for iteration in 0..10 {
         let mut fit = PlaneFit::default();
@@ -130,10 +148,15 @@ fn fit_face(
         let mut changed = false;
         for ix in 0..s.nx {
             for iy in 0..s.ny {
-                if !candidate(ix, iy) {
+                let c = s.cell(ix, iy);
+                let eligible = candidate(ix, iy) || (iteration >= 2 && toe_band(&p, ix, iy));
+                if !eligible {
+                    if use_cell[c] {
+                        use_cell[c] = false;
+                        changed = true;
+                    }
                     continue;
                 }
-                let c = s.cell(ix, iy);
                 let cell = &f.cells[c];
                 let z = height(f, c);
                 let r = f64::from(z) - p.z(f64::from(cell.x), f64::from(cell.y));
