@@ -3,7 +3,7 @@
 
 use can_dbc::{ByteOrder, MessageId, ValueType, DBC};
 use rover_terrain::link::proto::{
-    can, Decision, HazardKind, Heartbeat, ServiceState, Side, Verdict,
+    can, Decision, HazardKind, Heartbeat, Odometry, ServiceState, Side, Verdict,
 };
 
 fn raw(data: &[u8; 8], start: u64, size: u64, signed: bool) -> i64 {
@@ -47,10 +47,18 @@ fn the_dbc_matches_the_encoder() {
         dropped: 12,
         seq: 200,
     };
+    let o = Odometry {
+        seq: 77,
+        time_ms: 54_321,
+        forward_mm: 40_000,
+        lateral_2mm: 200,
+        heading: 0x8000,
+    };
     let frames = [
         can::verdict_frames(&v)[0],
         can::verdict_frames(&v)[1],
         can::heartbeat_frame(&h),
+        can::odometry_frame(&o),
     ];
     let expected: &[(u16, &str, f64)] = &[
         (can::VERDICT_ID, "Decision", 1.0),
@@ -69,6 +77,11 @@ fn the_dbc_matches_the_encoder() {
         (can::HEARTBEAT_ID, "FrameRate", 29.97),
         (can::HEARTBEAT_ID, "Dropped", 12.0),
         (can::HEARTBEAT_ID, "Counter", 200.0),
+        (can::ODOMETRY_ID, "OdoCounter", 77.0),
+        (can::ODOMETRY_ID, "OdoTime", 54.321),
+        (can::ODOMETRY_ID, "OdoForward", 40.0),
+        (can::ODOMETRY_ID, "OdoLateral", 0.4),
+        (can::ODOMETRY_ID, "OdoHeading", 180.0),
     ];
     let mut checked = 0;
     for msg in dbc.messages() {

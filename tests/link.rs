@@ -90,7 +90,9 @@ fn ten_thousand_verdicts_through_garbage_and_bit_flips_over_a_pty() {
         for &b in &buf[..n] {
             match decoder.push(b) {
                 Some(Ok(Message::Verdict(v))) => got.push(v),
-                Some(Ok(Message::Heartbeat(_))) => panic!("no heartbeat was sent"),
+                Some(Ok(m @ (Message::Heartbeat(_) | Message::Odometry(_)))) => {
+                    panic!("only verdicts were sent: {m:?}")
+                }
                 Some(Err(_)) => rejected += 1,
                 None => {}
             }
@@ -296,4 +298,49 @@ fn a_failing_link_is_reopened_with_backoff_without_blocking() {
     assert_eq!(r.failures(), 2);
     assert!(!r.is_open());
     assert!(r.backoff() > BACKOFF_MIN);
+}
+
+#[test]
+fn the_controller_simulator_sends_odometry_the_protocol_decodes_over_a_pty() {
+    let (mut master, slave) = pair();
+    let path = slave.name().unwrap();
+    let out = bin()
+        .args(["controller", "--link", &format!("serial:{path}")])
+        .args(["--count", "40", "--rate-hz", "200", "--speed-mps", "0.4"])
+        .args(["--turn-dps", "-20"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mut decoder = Decoder::new();
+    let mut got = Vec::new();
+    let mut buf = [0u8; 512];
+    while got.len() < 40 {
+        let n = master.read(&mut buf).expect("40 messages arrive");
+        for &b in &buf[..n] {
+            match decoder.push(b) {
+                Some(Ok(Message::Odometry(o))) => got.push(o),
+                Some(other) => panic!("only odometry is sent: {other:?}"),
+                None => {}
+            }
+        }
+    }
+    drop(slave);
+    // 200 Hz at 0.4 m/s turning clockwise at 20°/s: 2 mm and -0.1° per message,
+    // as wrapped differences of cumulative counters; 39 messages cover 78 mm.
+    for w in got.windows(2) {
+        let m = w[1].since(&w[0]);
+        assert_eq!((m.messages, m.dt_ms), (1, 5), "{m:?}");
+        assert_eq!(m.forward_mm, 2, "{m:?}");
+        assert!(
+            (f64::from(m.dheading_rad) + 0.1f64.to_radians()).abs() < 2e-4,
+            "{m:?}"
+        );
+    }
+    let total = got[39].since(&got[0]);
+    assert_eq!(total.forward_mm, 78);
+    assert!((f64::from(total.dheading_rad) + 3.9f64.to_radians()).abs() < 2e-4);
 }

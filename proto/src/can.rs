@@ -4,6 +4,7 @@
 //! gradient. `config/rover-terrain.dbc` describes the same layout for CAN tools.
 
 use crate::message::{DecodeError, Heartbeat, Verdict};
+use crate::odometry::Odometry;
 
 /// Verdict core.
 pub const VERDICT_ID: u16 = 0x310;
@@ -11,6 +12,8 @@ pub const VERDICT_ID: u16 = 0x310;
 pub const VERDICT_EXT_ID: u16 = 0x311;
 /// Heartbeat.
 pub const HEARTBEAT_ID: u16 = 0x312;
+/// Odometry, from the motor controller to the terrain service.
+pub const ODOMETRY_ID: u16 = 0x320;
 
 /// One CAN frame: identifier and 8 data bytes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -43,6 +46,14 @@ pub fn heartbeat_frame(h: &Heartbeat) -> Frame {
     }
 }
 
+/// The frame of an odometry message.
+pub fn odometry_frame(o: &Odometry) -> Frame {
+    Frame {
+        id: ODOMETRY_ID,
+        data: o.encode(),
+    }
+}
+
 /// Reassembles verdicts from core and extension frames; a core without its
 /// extension is still delivered (with the low sequence byte), never lost.
 #[derive(Debug, Default)]
@@ -60,6 +71,8 @@ pub enum Received {
     CoreOnly(Verdict),
     /// A heartbeat.
     Heartbeat(Heartbeat),
+    /// The controller's odometry.
+    Odometry(Odometry),
     /// A frame with another identifier.
     Other,
 }
@@ -85,6 +98,7 @@ impl Assembler {
                 None => (Err(DecodeError::Inconsistent), None),
             },
             HEARTBEAT_ID => (Heartbeat::decode(&f.data).map(Received::Heartbeat), None),
+            ODOMETRY_ID => (Odometry::decode(&f.data).map(Received::Odometry), None),
             _ => (Ok(Received::Other), None),
         }
     }

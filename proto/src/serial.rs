@@ -1,7 +1,8 @@
 //! Framing for a byte stream (a serial line, a pipe, a file).
 //!
 //! ```text
-//! raw frame:  version (1) | type (1) | payload (verdict 16: core + ext; heartbeat 8) | CRC-16 (2, LE)
+//! raw frame:  version (1) | type (1) | payload (verdict 16: core + ext; heartbeat 8;
+//!             odometry 8) | CRC-16 (2, LE)
 //! on the wire: COBS(raw frame) followed by one 0x00 delimiter
 //! ```
 //!
@@ -13,12 +14,15 @@
 //! frame, never more; a frame longer than any message is rejected at its delimiter.
 
 use crate::message::{DecodeError, Heartbeat, Verdict};
+use crate::odometry::Odometry;
 use crate::VERSION;
 
 /// Message type of a verdict frame.
 pub const TYPE_VERDICT: u8 = 0x01;
 /// Message type of a heartbeat frame.
 pub const TYPE_HEARTBEAT: u8 = 0x02;
+/// Message type of an odometry frame (controller to service).
+pub const TYPE_ODOMETRY: u8 = 0x03;
 /// The frame CRC: CRC-16/IBM-3740 (CCITT-FALSE).
 pub const CRC: crc::Crc<u16> = crc::Crc::<u16>::new(&crc::CRC_16_IBM_3740);
 /// Longest raw frame: header 2 + payload 16 + CRC 2.
@@ -33,6 +37,8 @@ pub enum Message {
     Verdict(Verdict),
     /// A heartbeat.
     Heartbeat(Heartbeat),
+    /// The controller's odometry.
+    Odometry(Odometry),
 }
 
 /// One encoded frame, delimiter included.
@@ -52,6 +58,11 @@ pub fn encode(msg: &Message) -> WireFrame {
         Message::Heartbeat(h) => {
             raw[1] = TYPE_HEARTBEAT;
             raw[2..10].copy_from_slice(&h.encode());
+            10
+        }
+        Message::Odometry(o) => {
+            raw[1] = TYPE_ODOMETRY;
+            raw[2..10].copy_from_slice(&o.encode());
             10
         }
     };
@@ -81,7 +92,7 @@ pub fn decode_frame(encoded: &mut [u8]) -> Result<Message, DecodeError> {
     let payload = &body[2..];
     let expected = match body[1] {
         TYPE_VERDICT => 16,
-        TYPE_HEARTBEAT => 8,
+        TYPE_HEARTBEAT | TYPE_ODOMETRY => 8,
         t => return Err(DecodeError::Type(t)),
     };
     if payload.len() != expected {
@@ -97,8 +108,10 @@ pub fn decode_frame(encoded: &mut [u8]) -> Result<Message, DecodeError> {
     }
     let mut a = [0u8; 8];
     a.copy_from_slice(&payload[..8]);
-    if body[1] == TYPE_HEARTBEAT {
-        return Heartbeat::decode(&a).map(Message::Heartbeat);
+    match body[1] {
+        TYPE_HEARTBEAT => return Heartbeat::decode(&a).map(Message::Heartbeat),
+        TYPE_ODOMETRY => return Odometry::decode(&a).map(Message::Odometry),
+        _ => {}
     }
     let mut b = [0u8; 8];
     b.copy_from_slice(&payload[8..16]);

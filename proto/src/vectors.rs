@@ -3,7 +3,7 @@
 //! --example vectors` prints the table; a test checks the document against it).
 
 use crate::serial::{encode, Message};
-use crate::{Decision, HazardKind, Heartbeat, ServiceState, Side, Verdict};
+use crate::{Decision, HazardKind, Heartbeat, Odometry, ServiceState, Side, Verdict};
 
 /// The "go" vector.
 pub fn sample_go() -> Verdict {
@@ -46,6 +46,17 @@ pub fn sample_heartbeat() -> Heartbeat {
     }
 }
 
+/// The "odometry" vector: 1.5 m forward, 2 cm to the left, heading 90°, at 12.345 s.
+pub fn sample_odometry() -> Odometry {
+    Odometry {
+        seq: 42,
+        time_ms: 12_345,
+        forward_mm: 1500,
+        lateral_2mm: 10,
+        heading: 0x4000,
+    }
+}
+
 /// Lower-case hex, bytes separated by spaces.
 pub fn hex(bytes: &[u8]) -> heapless::String<96> {
     const HEX: &[u8; 16] = b"0123456789abcdef";
@@ -61,7 +72,7 @@ pub fn hex(bytes: &[u8]) -> heapless::String<96> {
 }
 
 /// Every vector: its name in `PROTOCOL.md` and its bytes in hex.
-pub fn table() -> [(&'static str, heapless::String<96>); 7] {
+pub fn table() -> [(&'static str, heapless::String<96>); 9] {
     [
         ("go-serial", hex(&encode(&Message::Verdict(sample_go())))),
         ("go-can-310", hex(&sample_go().core())),
@@ -76,5 +87,10 @@ pub fn table() -> [(&'static str, heapless::String<96>); 7] {
             hex(&encode(&Message::Heartbeat(sample_heartbeat()))),
         ),
         ("heartbeat-can-312", hex(&sample_heartbeat().encode())),
+        (
+            "odometry-serial",
+            hex(&encode(&Message::Odometry(sample_odometry()))),
+        ),
+        ("odometry-can-320", hex(&sample_odometry().encode())),
     ]
 }

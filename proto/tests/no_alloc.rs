@@ -66,7 +66,18 @@ fn encode_and_decode_allocate_nothing() {
     for k in 0..1000u32 {
         let mut v = v;
         v.seq = k;
-        for msg in [Message::Verdict(v), Message::Heartbeat(h)] {
+        let o = rover_terrain_proto::Odometry::from_pose(
+            k as u8,
+            u64::from(k) * 20,
+            f64::from(k) * 0.01,
+            0.0,
+            0.1,
+        );
+        for msg in [
+            Message::Verdict(v),
+            Message::Heartbeat(h),
+            Message::Odometry(o),
+        ] {
             for &b in encode(&msg).iter() {
                 if let Some(Ok(m)) = decoder.push(b) {
                     delivered += usize::from(m == msg);
@@ -76,8 +87,9 @@ fn encode_and_decode_allocate_nothing() {
         for f in can::verdict_frames(&v) {
             let _ = assembler.push(&f);
         }
+        let _ = assembler.push(&can::odometry_frame(&o));
     }
     COUNTING.with(|c| c.set(false));
     assert_eq!(ALLOCATIONS.load(Ordering::SeqCst) - before, 0);
-    assert_eq!(delivered, 2000);
+    assert_eq!(delivered, 3000);
 }

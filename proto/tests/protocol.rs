@@ -6,7 +6,8 @@ use rover_terrain_proto::can::{self, Assembler, Received};
 use rover_terrain_proto::serial::{self, Decoder, Message, CRC};
 use rover_terrain_proto::vectors::{self, sample_go, sample_stop};
 use rover_terrain_proto::{
-    Command, Decision, DecodeError, Freshness, HazardKind, Heartbeat, ServiceState, Side, Verdict,
+    Command, Decision, DecodeError, Freshness, HazardKind, Heartbeat, Odometry, ServiceState, Side,
+    Verdict,
 };
 
 fn verdict_strategy() -> impl Strategy<Value = Verdict> {
@@ -94,6 +95,37 @@ proptest! {
         prop_assert_eq!(decode_all(&frame), vec![Ok(Message::Heartbeat(h))]);
         let f = can::heartbeat_frame(&h);
         prop_assert_eq!(Assembler::default().push(&f).0, Ok(Received::Heartbeat(h)));
+    }
+
+    #[test]
+    fn odometry_round_trips(b in any::<[u8; 8]>()) {
+        let o = Odometry::decode(&b).unwrap();
+        prop_assert_eq!(o.encode(), b);
+        let frame = serial::encode(&Message::Odometry(o));
+        prop_assert_eq!(decode_all(&frame), vec![Ok(Message::Odometry(o))]);
+        let f = can::odometry_frame(&o);
+        prop_assert_eq!(f.id, can::ODOMETRY_ID);
+        prop_assert_eq!(Assembler::default().push(&f).0, Ok(Received::Odometry(o)));
+    }
+
+    /// Any pose and any motion within half of each counter's range: the difference
+    /// of the two messages is the motion, to the wire's resolution, across wraps.
+    #[test]
+    fn odometry_differences_are_the_motion(
+        seq in any::<u8>(), lost in 0u8..100,
+        t in 40_000u64..10_000_000, dt in -32_000i64..32_000,
+        fwd in -1.0e5f64..1.0e5, dfwd in -30.0f64..30.0,
+        lat in -100.0f64..100.0, dlat in -0.25f64..0.25,
+        hd in -100.0f64..100.0, dhd in -3.1f64..3.1,
+    ) {
+        let a = Odometry::from_pose(seq, t, fwd, lat, hd);
+        let b = Odometry::from_pose(seq.wrapping_add(lost + 1), (t as i64 + dt) as u64, fwd + dfwd, lat + dlat, hd + dhd);
+        let m = b.since(&a);
+        prop_assert_eq!(m.messages, lost + 1);
+        prop_assert_eq!(i64::from(m.dt_ms), dt);
+        prop_assert!((f64::from(m.forward_mm) / 1000.0 - dfwd).abs() <= 0.0011, "{:?}", m);
+        prop_assert!((f64::from(m.lateral_mm) / 1000.0 - dlat).abs() <= 0.0021, "{:?}", m);
+        prop_assert!((f64::from(m.dheading_rad) - dhd).abs() <= 2e-4, "{:?}", m);
     }
 
     #[test]

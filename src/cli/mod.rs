@@ -4,6 +4,7 @@
 
 mod analyze;
 mod bench;
+mod controller;
 mod frames;
 mod inspect;
 mod logging;
@@ -54,6 +55,9 @@ enum Command {
     /// The controller's view on the bench: decode what arrives on a link, one JSON line
     /// per message, with CRC errors, sequence gaps and staleness.
     Monitor(monitor::Args),
+    /// A motor controller on the bench: send the wheel odometry of a steady drive
+    /// over a link (PROTOCOL.md, odometry), at a fixed rate.
+    Controller(controller::Args),
     /// Time the whole pipeline on one frame and print one JSON line of medians and p99s.
     Bench(bench::Args),
     /// Run the fixture suite against the expected verdicts and write the report.
@@ -134,6 +138,7 @@ fn dispatch(
         Command::Analyze(args) => analyze::run(args),
         Command::Send(args) => send::run(args),
         Command::Monitor(args) => monitor::run(args),
+        Command::Controller(args) => controller::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Validate(args) => validate::run(args),
         Command::Record(args) => record::run(args),

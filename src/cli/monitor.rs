@@ -55,6 +55,10 @@ impl Monitor {
                 self.valid += 1;
                 self.line(wire::heartbeat_json(&h))
             }
+            Ok(Message::Odometry(o)) => {
+                self.valid += 1;
+                self.line(wire::odometry_json(&o))
+            }
             Err(e) => self.error(e),
         }
     }
@@ -84,7 +88,7 @@ pub struct Args {
     /// Serial speed.
     #[arg(long, default_value_t = rover_terrain::link::DEFAULT_BAUD)]
     baud: u32,
-    /// Exit after this many valid messages (verdicts and heartbeats).
+    /// Exit after this many valid messages (verdicts, heartbeats and odometry).
     #[arg(long)]
     count: Option<u64>,
     /// No valid verdict for this long and the controller would stop, ms.
@@ -164,6 +168,10 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                                 Ok(Received::Heartbeat(h)) => {
                                     m.valid += 1;
                                     m.line(wire::heartbeat_json(&h))?;
+                                }
+                                Ok(Received::Odometry(o)) => {
+                                    m.valid += 1;
+                                    m.line(wire::odometry_json(&o))?;
                                 }
                                 Ok(Received::Other) => {}
                                 Err(e) => m.error(e)?,

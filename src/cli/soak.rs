@@ -56,6 +56,7 @@ pub fn run(config: Config, camera: CameraSpec, seconds: f64) -> anyhow::Result<s
                         match decoder.push(b) {
                             Some(Ok(Message::Verdict(_))) => decoded.verdicts += 1,
                             Some(Ok(Message::Heartbeat(_))) => decoded.heartbeats += 1,
+                            Some(Ok(Message::Odometry(_))) => decoded.errors += 1, // not ours to send
                             Some(Err(_)) => decoded.errors += 1,
                             None => {}
                         }

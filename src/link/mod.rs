@@ -83,6 +83,9 @@ pub trait Transport: Send {
     fn send_verdict(&mut self, v: &proto::Verdict) -> Result<(), Error>;
     /// Send one heartbeat.
     fn send_heartbeat(&mut self, h: &proto::Heartbeat) -> Result<(), Error>;
+    /// Send one odometry message (the controller's direction: the bench's controller
+    /// simulator uses the same transports).
+    fn send_odometry(&mut self, o: &proto::Odometry) -> Result<(), Error>;
     /// Push buffered bytes out.
     fn flush(&mut self) -> Result<(), Error>;
 }

@@ -41,6 +41,10 @@ impl Transport for SerialTransport {
         self.write(&Message::Heartbeat(*h))
     }
 
+    fn send_odometry(&mut self, o: &proto::Odometry) -> Result<(), Error> {
+        self.write(&Message::Odometry(*o))
+    }
+
     fn flush(&mut self) -> Result<(), Error> {
         self.port
             .flush()

@@ -52,6 +52,10 @@ impl Transport for SocketCanTransport {
         self.write(&[can::heartbeat_frame(h)])
     }
 
+    fn send_odometry(&mut self, o: &proto::Odometry) -> Result<(), Error> {
+        self.write(&[can::odometry_frame(o)])
+    }
+
     fn flush(&mut self) -> Result<(), Error> {
         Ok(())
     }

@@ -71,6 +71,10 @@ impl<W: Write + Send> Transport for JsonLines<W> {
         self.line(wire::HeartbeatJson::from(h))
     }
 
+    fn send_odometry(&mut self, o: &proto::Odometry) -> Result<(), Error> {
+        self.line(wire::odometry_json(o))
+    }
+
     fn flush(&mut self) -> Result<(), Error> {
         self.out.flush().map_err(|e| super::link_err(self.name, e))
     }

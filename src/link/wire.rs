@@ -153,6 +153,19 @@ impl From<&proto::Heartbeat> for HeartbeatJson {
     }
 }
 
+/// An odometry message as one JSON value: its raw counters in SI units (they wrap:
+/// see `PROTOCOL.md`).
+pub fn odometry_json(o: &proto::Odometry) -> serde_json::Value {
+    serde_json::json!({
+        "forward_m": f64::from(o.forward_mm) / 1000.0,
+        "heading_deg": f64::from(o.heading) * 360.0 / f64::from(proto::HEADING_UNITS_PER_TURN),
+        "lateral_m": f64::from(o.lateral_2mm) * 0.002,
+        "seq": o.seq,
+        "time_s": f64::from(o.time_ms) / 1000.0,
+        "type": "odometry",
+    })
+}
+
 /// The wire verdict as one JSON value (see [`VerdictJson`]).
 pub fn verdict_json(v: &proto::Verdict) -> serde_json::Value {
     to_value(VerdictJson::from(v))
