@@ -24,6 +24,63 @@ pub struct Config {
     pub link: LinkConfig,
     /// The service loop: timeouts, heartbeat, metrics, logging (`run`).
     pub service: ServiceConfig,
+    /// Terrain memory: frames fused over the controller's odometry.
+    pub memory: MemoryConfig,
+}
+
+/// `[memory]`: the rover-centred height map that keeps what the camera saw as it
+/// passes out of view, moved with the controller's odometry.
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MemoryConfig {
+    /// Fuse frames over odometry. Off: every verdict from its own frame alone.
+    pub enabled: bool,
+    /// A remembered cell not seen again within this much travel is forgotten, metres.
+    pub max_travel_m: f64,
+    /// A remembered cell not seen again within this time is forgotten, seconds.
+    pub max_age_s: f64,
+    /// Frames that must have seen a cell (at a consistent height) before it is
+    /// remembered once out of view: one noisy frame is never remembered.
+    pub min_frames: u32,
+    /// The map reaches this far behind the rover origin, metres (at least to the
+    /// rear axle, for reversing).
+    pub behind_m: f64,
+    /// No odometry for this long and the verdicts fall back to single frames, seconds.
+    pub odometry_timeout_s: f64,
+    /// Odometry that implies more than this speed is a jump, not motion: fall back,
+    /// m/s.
+    pub max_speed_mps: f64,
+    /// Odometry that implies more than this turn rate is a jump: fall back, °/s.
+    pub max_turn_dps: f64,
+}
+
+impl Default for MemoryConfig {
+    fn default() -> Self {
+        MemoryConfig {
+            enabled: true,
+            max_travel_m: 1.5,
+            max_age_s: 30.0,
+            min_frames: 2,
+            behind_m: 0.8,
+            odometry_timeout_s: 0.5,
+            max_speed_mps: 2.0,
+            max_turn_dps: 90.0,
+        }
+    }
+}
+
+impl MemoryConfig {
+    /// `[memory]`: lengths, times and limits positive and finite.
+    fn check(&self) -> Result<(), Invalid> {
+        positive("memory.max_travel_m", self.max_travel_m)?;
+        positive("memory.max_age_s", self.max_age_s)?;
+        within("memory.min_frames", self.min_frames, 1, 1000)?;
+        positive_below("memory.behind_m", self.behind_m, 10.0)?;
+        positive_below("memory.odometry_timeout_s", self.odometry_timeout_s, 30.0)?;
+        positive_below("memory.max_speed_mps", self.max_speed_mps, 50.0)?;
+        positive_below("memory.max_turn_dps", self.max_turn_dps, 3600.0)?;
+        Ok(())
+    }
 }
 
 /// `[link]`: where `run` sends verdicts.
@@ -301,6 +358,7 @@ impl Config {
         self.analysis.check()?;
         self.link.check()?;
         self.service.check()?;
+        self.memory.check()?;
         self.check_grid()
     }
 
@@ -681,6 +739,66 @@ mod tests {
             (c.rover.max_roll_deg, c.rover.max_pitch_deg),
             (Some(12.5), None)
         );
+    }
+
+    #[test]
+    fn memory_keys_are_checked() {
+        for (text, key) in [
+            (
+                "[memory]
+max_travel_m = 0
+",
+                "memory.max_travel_m",
+            ),
+            (
+                "[memory]
+max_age_s = nan
+",
+                "memory.max_age_s",
+            ),
+            (
+                "[memory]
+min_frames = 0
+",
+                "memory.min_frames",
+            ),
+            (
+                "[memory]
+odometry_timeout_s = 60
+",
+                "memory.odometry_timeout_s",
+            ),
+            (
+                "[memory]
+max_speed_mps = -1
+",
+                "memory.max_speed_mps",
+            ),
+            (
+                "[memory]
+max_turn_dps = inf
+",
+                "memory.max_turn_dps",
+            ),
+            (
+                "[memory]
+behind_m = 0
+",
+                "memory.behind_m",
+            ),
+        ] {
+            let e = err(text);
+            assert!(e.contains(key), "{text}: {e}");
+        }
+        let c = Config::from_toml(
+            "[memory]
+enabled = false
+",
+            "x",
+        )
+        .unwrap();
+        assert!(!c.memory.enabled);
+        assert!(Config::default().memory.enabled);
     }
 
     #[test]

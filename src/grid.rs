@@ -157,7 +157,8 @@ pub const SURFACE_MIN_SHARE: f32 = 0.25;
 pub const SURFACE_BAND: f32 = 1.5;
 
 impl Cell {
-    const EMPTY: Cell = Cell {
+    /// A cell with no points.
+    pub const EMPTY: Cell = Cell {
         n: 0,
         x: 0.0,
         y: 0.0,

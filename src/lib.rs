@@ -16,6 +16,7 @@ pub mod grid;
 pub mod inspect;
 pub mod level;
 pub mod link;
+pub mod memory;
 pub mod pipeline;
 pub mod projection;
 pub mod service;

@@ -10,6 +10,8 @@ use rover_terrain_drivers::DepthFrame;
 use crate::analysis::Analyzer;
 use crate::config::Config;
 use crate::grid::{GridSpec, VoxelGrid};
+use crate::memory::odometry::Untrusted;
+use crate::memory::{MemoryState, Motion, TerrainMemory};
 use crate::projection::Projector;
 use crate::verdict::Verdict;
 use crate::Error;
@@ -21,6 +23,8 @@ pub struct Pipeline {
     projector: Projector,
     grid: VoxelGrid,
     analyzer: Analyzer,
+    /// The terrain memory; `None` when `[memory] enabled = false`.
+    memory: Option<TerrainMemory>,
     verdict: Verdict,
     min_mm: u16,
     max_mm: u16,
@@ -38,6 +42,10 @@ impl Pipeline {
         let spec = GridSpec::from_config(&config);
         let grid = VoxelGrid::new(spec, w * h);
         let analyzer = Analyzer::new(&config, spec, &projector)?;
+        let memory = config
+            .memory
+            .enabled
+            .then(|| TerrainMemory::new(&config, spec));
         let min_mm = (config.camera.min_range_m * 1000.0)
             .ceil()
             .clamp(1.0, 65535.0) as u16;
@@ -49,6 +57,7 @@ impl Pipeline {
             projector,
             grid,
             analyzer,
+            memory,
             verdict: Verdict::default(),
             min_mm,
             max_mm,
@@ -71,6 +80,10 @@ impl Pipeline {
         })?;
         let projector = Projector::new(&config, self.projector.width(), self.projector.height());
         let analyzer = Analyzer::new(&config, GridSpec::from_config(&config), &projector)?;
+        // The view changed: what was out of view is not what is now.
+        if let Some(m) = &mut self.memory {
+            m.clear();
+        }
         self.projector = projector;
         self.analyzer = analyzer;
         self.config = config;
@@ -103,9 +116,27 @@ impl Pipeline {
         &self.projector
     }
 
-    /// Analyse one frame. A frame whose size is not the configured one is rejected,
-    /// never analysed.
+    /// The terrain memory, when enabled.
+    pub fn memory(&self) -> Option<&TerrainMemory> {
+        self.memory.as_ref()
+    }
+
+    /// Analyse one frame on its own (no odometry: the terrain memory, if enabled,
+    /// starts again from this frame). A frame whose size is not the configured one is
+    /// rejected, never analysed.
     pub fn process(&mut self, frame: &DepthFrame) -> Result<&Verdict, Error> {
+        self.process_moved(frame, Err(Untrusted::NoOdometry))
+    }
+
+    /// Analyse one frame, the rover having moved by `motion` since the previous one:
+    /// with the memory enabled and the motion trusted, the frame is fused with the
+    /// remembered map and the analysis runs on the fused cells; otherwise the map
+    /// starts again from this frame and the verdict is the frame's alone, saying why.
+    pub fn process_moved(
+        &mut self,
+        frame: &DepthFrame,
+        motion: Result<Motion, Untrusted>,
+    ) -> Result<&Verdict, Error> {
         let t0 = Instant::now();
         if frame.width() != self.projector.width() || frame.height() != self.projector.height() {
             return Err(Error::FrameSize {
@@ -134,7 +165,31 @@ impl Pipeline {
         v.voxels = self.grid.voxels().len() as u32;
         v.timing_us.bin = (t1 - t0).as_secs_f32() * 1e6;
         v.timing_us.voxels = (t2 - t1).as_secs_f32() * 1e6;
-        self.analyzer.analyze(&self.grid, v);
+        let cells = match &mut self.memory {
+            None => {
+                v.memory = crate::verdict::MemoryUse::default();
+                self.grid.cells()
+            }
+            Some(memory) => {
+                match motion {
+                    Ok(m) => memory.advance(&m),
+                    Err(_) => memory.clear(),
+                }
+                let remembered = memory.fuse(self.grid.cells(), self.analyzer.expected());
+                v.memory = crate::verdict::MemoryUse {
+                    state: if motion.is_ok() {
+                        MemoryState::Fused
+                    } else {
+                        MemoryState::SingleFrame
+                    },
+                    reason: motion.err().map(Untrusted::as_str),
+                    remembered_cells: remembered,
+                };
+                memory.cells()
+            }
+        };
+        v.timing_us.memory = t2.elapsed().as_secs_f32() * 1e6;
+        self.analyzer.analyze(cells, self.grid.cut(), v);
         v.timing_us.total = t0.elapsed().as_secs_f32() * 1e6;
         Ok(&self.verdict)
     }

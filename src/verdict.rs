@@ -133,6 +133,9 @@ pub struct StageTimes {
     pub crossing: f32,
     /// Feature analysis: workcase and measures.
     pub feature: f32,
+    /// Terrain memory: moving the map by the odometry and fusing the frame in (0
+    /// when the memory is off).
+    pub memory: f32,
     /// The whole frame.
     pub total: f32,
 }
@@ -165,6 +168,33 @@ pub struct Verdict {
     pub timing_us: StageTimes,
     /// The camera pitch and roll the frame was analysed with.
     pub mount: MountUsed,
+    /// Whether the frame was fused with the terrain memory.
+    pub memory: MemoryUse,
+}
+
+/// How the verdict used the terrain memory.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MemoryState {
+    /// `[memory] enabled = false`: single frames.
+    #[default]
+    Off,
+    /// Enabled, but no trusted odometry: single frames (the map starts again).
+    SingleFrame,
+    /// The frame fused with the remembered map.
+    Fused,
+}
+
+/// How a verdict used the terrain memory.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct MemoryUse {
+    /// Off, single frame (no trusted odometry) or fused.
+    pub state: MemoryState,
+    /// Why the frame stood alone while the memory is enabled: `no_odometry`,
+    /// `odometry_timeout` or `odometry_jump`; `None` otherwise.
+    pub reason: Option<&'static str>,
+    /// Ground cells out of the camera's view that came from memory.
+    pub remembered_cells: u32,
 }
 
 /// The camera attitude a verdict was computed with (diagnostics).
@@ -193,6 +223,7 @@ impl Default for Verdict {
             voxels: 0,
             timing_us: StageTimes::default(),
             mount: MountUsed::default(),
+            memory: MemoryUse::default(),
         }
     }
 }
@@ -256,7 +287,12 @@ impl Verdict {
             "voxels": self.voxels,
             "timing_us": {
                 "bin": r1(t.bin), "voxels": r1(t.voxels), "crossing": r1(t.crossing),
-                "feature": r1(t.feature), "total": r1(t.total),
+                "feature": r1(t.feature), "memory": r1(t.memory), "total": r1(t.total),
+            },
+            "memory": {
+                "state": self.memory.state,
+                "reason": self.memory.reason,
+                "remembered_cells": self.memory.remembered_cells,
             },
             "mount": {
                 "pitch_deg": r3(self.mount.pitch_deg),

@@ -92,6 +92,7 @@ fn the_library_has_no_import_cycles_and_its_core_imports_no_tool() {
         "verdict",
         "pipeline",
         "link",
+        "memory",
     ] {
         for tool in ["sim", "inspect", "validate", "service", "cli", "bench"] {
             assert!(

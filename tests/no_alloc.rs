@@ -90,6 +90,37 @@ fn processing_allocates_nothing_after_warm_up() {
     );
     assert!(go > 0 && go < 100);
 
+    // With the terrain memory fusing every frame over odometry, and falling back now
+    // and then, nothing allocates either.
+    let motion = rover_terrain::memory::Motion {
+        forward_m: 0.03,
+        dheading_rad: 0.01,
+        dt_s: 0.033,
+        ..Default::default()
+    };
+    let _ = pipeline.process_moved(&frames[0], Ok(motion)).unwrap();
+    ALLOCATIONS.store(0, Ordering::SeqCst);
+    COUNTING.store(true, Ordering::SeqCst);
+    let mut fused = 0;
+    for i in 0..100 {
+        let m = if i % 17 == 16 {
+            Err(rover_terrain::memory::odometry::Untrusted::Jump)
+        } else {
+            Ok(motion)
+        };
+        let v = pipeline
+            .process_moved(&frames[i % frames.len()], m)
+            .unwrap();
+        fused += usize::from(v.memory.remembered_cells > 0);
+    }
+    COUNTING.store(false, Ordering::SeqCst);
+    assert_eq!(
+        ALLOCATIONS.load(Ordering::SeqCst),
+        0,
+        "heap allocations with the memory"
+    );
+    assert!(fused > 50, "the memory was used: {fused}");
+
     // The lines written are the verdicts, in order (sequence numbers aside: the
     // pipeline counts frames on).
     let text = String::from_utf8(link.into_inner()).unwrap();

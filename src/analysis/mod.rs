@@ -12,7 +12,9 @@ mod visibility;
 use std::time::Instant;
 
 use crate::config::Config;
-use crate::grid::{Cell, GridSpec, VoxelGrid};
+#[cfg(test)]
+use crate::grid::VoxelGrid;
+use crate::grid::{Cell, GridSpec};
 use crate::projection::Projector;
 use crate::verdict::{Decision, Hazard, HazardKind, SeenTo, Side, Verdict};
 use crate::Error;
@@ -125,10 +127,10 @@ pub(crate) struct Frame<'a> {
 
 impl<'a> Frame<'a> {
     /// The frame `grid` holds, as `view` saw it.
-    fn new(fixed: &'a Fixed, view: &'a View, grid: &'a VoxelGrid) -> Self {
+    fn new(fixed: &'a Fixed, view: &'a View, cells: &'a [Cell]) -> Self {
         Frame {
             spec: &fixed.spec,
-            cells: grid.cells(),
+            cells,
             seen: &view.seen,
             shadowed: &view.shadowed,
             past: &view.past,
@@ -252,19 +254,20 @@ impl Analyzer {
         &self.fixed.region
     }
 
-    /// Analyse the grid's cells into `verdict` (decision, feature, hazards, seen
+    /// Analyse ground cells (the grid's, or the terrain memory's fused ones) and the
+    /// frame's horizon cut into `verdict` (decision, feature, hazards, seen
     /// fraction, tilt, crossing and feature timings): what was seen and what could
     /// not be, the crossing tests, the decision, and for a go the feature.
-    pub fn analyze(&mut self, grid: &VoxelGrid, verdict: &mut Verdict) {
+    pub fn analyze(&mut self, cells: &[Cell], cut: &[bool], verdict: &mut Verdict) {
         let t0 = Instant::now();
         verdict.hazards.clear();
         verdict.feature = None;
-        let (seen_expected, nearest_unseen) = self.mark_seen(grid);
+        let (seen_expected, nearest_unseen) = self.mark_seen(cells);
         verdict.seen_fraction = seen_expected as f32 / self.fixed.expected_count as f32;
-        self.mark_past(grid.cut());
-        let visible = self.fixed.expected_count - self.mark_hidden(grid);
+        self.mark_past(cut);
+        let visible = self.fixed.expected_count - self.mark_hidden(cells);
         verdict.seen_to_m = self.seen_to();
-        let frame = Frame::new(&self.fixed, &self.view, grid);
+        let frame = Frame::new(&self.fixed, &self.view, cells);
         let scratch = &mut self.scratch;
         crossing::steps_and_slopes(&frame, &mut scratch.strip, &mut scratch.surface, verdict);
         tilt::track_profile(
@@ -300,12 +303,12 @@ impl Analyzer {
 
     /// Which cells have enough points to count as seen; of the expected ones, how
     /// many are seen and the nearest row start (metres) of an unseen one.
-    fn mark_seen(&mut self, grid: &VoxelGrid) -> (usize, f32) {
+    fn mark_seen(&mut self, cells: &[Cell]) -> (usize, f32) {
         let fx = &self.fixed;
         let min_pts = fx.cfg.analysis.min_points_per_cell;
         let mut seen_expected = 0usize;
         let mut nearest_unseen = f32::INFINITY;
-        for (i, (s, c)) in self.view.seen.iter_mut().zip(grid.cells()).enumerate() {
+        for (i, (s, c)) in self.view.seen.iter_mut().zip(cells).enumerate() {
             *s = c.n >= min_pts;
             if fx.expected[i] {
                 if *s {
@@ -338,13 +341,13 @@ impl Analyzer {
 
     /// Unseen expected cells the camera could not have seen: past the horizon
     /// (beyond view) or in the shadow of something seen. Returns how many.
-    fn mark_hidden(&mut self, grid: &VoxelGrid) -> usize {
+    fn mark_hidden(&mut self, cells: &[Cell]) -> usize {
         let (fx, v) = (&self.fixed, &mut self.view);
         let mut hidden = 0usize;
         for i in 0..v.shadowed.len() {
             let unseen = fx.expected[i] && !v.seen[i];
             v.beyond[i] = unseen && v.past[i];
-            v.shadowed[i] = unseen && !v.beyond[i] && fx.paths.shadowed(i, &v.seen, grid.cells());
+            v.shadowed[i] = unseen && !v.beyond[i] && fx.paths.shadowed(i, &v.seen, cells);
             hidden += usize::from(v.beyond[i] || v.shadowed[i]);
         }
         hidden
@@ -353,7 +356,7 @@ impl Analyzer {
     /// The frame as the last [`Analyzer::analyze`] saw it (for tests of the steps).
     #[cfg(test)]
     pub(crate) fn frame<'a>(&'a self, grid: &'a VoxelGrid) -> Frame<'a> {
-        Frame::new(&self.fixed, &self.view, grid)
+        Frame::new(&self.fixed, &self.view, grid.cells())
     }
 }
 

@@ -25,6 +25,33 @@ const STEP_M: f64 = 0.01;
 /// Render `terrain` as the camera in `config` sees it: optical depth in millimetres,
 /// 0 where the ray hits nothing within [`FAR_M`].
 pub fn render(terrain: &Terrain, config: &Config) -> DepthFrame {
+    render_from(terrain, config, Pose::default())
+}
+
+/// Where the rover stands on a terrain for [`render_from`]: its origin at (x, y) of
+/// the terrain's coordinates, metres, heading counter-clockwise from the terrain's
+/// x axis, radians. The default is the terrain's origin, facing +x.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Pose {
+    /// Terrain x of the rover origin, metres.
+    pub x: f64,
+    /// Terrain y of the rover origin, metres.
+    pub y: f64,
+    /// Heading, radians, counter-clockwise.
+    pub heading: f64,
+}
+
+impl Pose {
+    /// The terrain coordinates of the rover-frame point (x, y).
+    pub fn to_terrain(&self, x: f64, y: f64) -> (f64, f64) {
+        let (s, c) = self.heading.sin_cos();
+        (self.x + c * x - s * y, self.y + s * x + c * y)
+    }
+}
+
+/// Render `terrain` as the camera in `config` sees it with the rover at `pose`: a
+/// frame of a drive.
+pub fn render_from(terrain: &Terrain, config: &Config, pose: Pose) -> DepthFrame {
     let (w, h) = (config.camera.width as usize, config.camera.height as usize);
     let projector = Projector::new(config, w, h);
     let mut pixels = vec![0u16; w * h];
@@ -40,7 +67,7 @@ pub fn render(terrain: &Terrain, config: &Config) -> DepthFrame {
             scope.spawn(move || {
                 for (k, px) in chunk.iter_mut().enumerate() {
                     let (u, v) = (k % w, chunk_i * rows_per + k / w);
-                    *px = cast(terrain, projector, u, v);
+                    *px = cast(terrain, pose, projector, u, v);
                 }
             });
         }
@@ -49,13 +76,17 @@ pub fn render(terrain: &Terrain, config: &Config) -> DepthFrame {
 }
 
 /// The optical depth (mm) at which pixel (u, v)'s ray meets the terrain.
-fn cast(terrain: &HeightField, projector: &Projector, u: usize, v: usize) -> u16 {
+fn cast(terrain: &HeightField, pose: Pose, projector: &Projector, u: usize, v: usize) -> u16 {
     let d = projector.ray(u, v);
     let o = projector.point(u, v, 0.0);
     // A margin, so that a surface lying exactly at a bound is inside the interval.
     let (lo, hi) = terrain.bounds();
     let (lo, hi) = (lo - 0.01, hi + 0.01);
-    let above = |t: f64| o.z + t * d.z - terrain.height(o.x + t * d.x, o.y + t * d.y);
+    let height = |x: f64, y: f64| {
+        let (tx, ty) = pose.to_terrain(x, y);
+        terrain.height(tx, ty)
+    };
+    let above = |t: f64| o.z + t * d.z - height(o.x + t * d.x, o.y + t * d.y);
     let (mut t0, t1) = if d.z < 0.0 {
         (((o.z - hi) / -d.z).max(0.0), ((o.z - lo) / -d.z).min(FAR_M))
     } else if o.z <= hi {

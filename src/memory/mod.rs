@@ -1,0 +1,537 @@
+//! Terrain memory: a rover-centred map of ground cells that moves with the rover's
+//! odometry, so that what the camera saw stays known as it passes into the blind zone
+//! before the wheels (or out of the field of view to the side).
+//!
+//! - [`odometry::Tracker`] turns the controller's wrapping odometry counters into the
+//!   motion between two frames, and refuses motion it cannot trust (none for too
+//!   long, or a jump faster than the rover can go).
+//! - [`TerrainMemory`] holds the map: the analysis grid's cells plus rows behind the
+//!   rover origin and columns beside the corridor, allocated once. Each frame it is
+//!   moved by the motion (every remembered cell keeps its points' centroid, moved
+//!   exactly, and lands in the cell that centroid now falls in: no drift however
+//!   small the steps), the new frame's seen cells replace what was remembered there,
+//!   and the cells the camera cannot see now (outside its view) are filled from
+//!   memory when they were seen by at least `min_frames` frames at a consistent
+//!   height, within `max_travel_m` of travel and `max_age_s`.
+//!
+//! What the camera sees now always wins: a cell seen now is the frame's, and a cell
+//! the camera should see now but does not is not filled (a hole, a shadow or a gap is
+//! judged from the frame). The memory never invents ground it has not seen, and it
+//! only remembers ground seen more than once.
+
+pub mod odometry;
+
+use crate::config::Config;
+use crate::grid::{Cell, GridSpec};
+pub use crate::verdict::MemoryState;
+
+/// The rover's motion between two frames, in the earlier frame's rover coordinates.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Motion {
+    /// Travel along the rover's x axis, metres.
+    pub forward_m: f32,
+    /// Travel along its y axis (left positive), metres.
+    pub lateral_m: f32,
+    /// Heading change, radians, counter-clockwise positive.
+    pub dheading_rad: f32,
+    /// Time between the two frames, seconds.
+    pub dt_s: f32,
+}
+
+impl Motion {
+    /// Where a point at `p` (earlier rover frame) lies in the later rover frame,
+    /// metres: the rover moved by (forward, lateral), then turned by the heading
+    /// change.
+    pub fn apply(&self, p: [f32; 2]) -> [f32; 2] {
+        let (s, c) = self.dheading_rad.sin_cos();
+        let (dx, dy) = (p[0] - self.forward_m, p[1] - self.lateral_m);
+        [c * dx + s * dy, -s * dx + c * dy]
+    }
+
+    /// The inverse of [`Motion::apply`]: where a point of the later frame was in the
+    /// earlier one.
+    pub fn unapply(&self, q: [f32; 2]) -> [f32; 2] {
+        let (s, c) = self.dheading_rad.sin_cos();
+        [
+            c * q[0] - s * q[1] + self.forward_m,
+            s * q[0] + c * q[1] + self.lateral_m,
+        ]
+    }
+}
+
+/// One remembered map cell.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Remembered {
+    /// The cell's statistics; `n == 0` when nothing is remembered.
+    cell: Cell,
+    /// Frames that saw it at a consistent height, in a row.
+    frames: u16,
+    /// Travel since it was last seen, metres.
+    travel_m: f32,
+    /// Time since it was last seen, seconds.
+    age_s: f32,
+    /// A copy of a neighbour filling a hole the motion left: used this frame, never
+    /// moved on (the original is, and copies again where a hole is left).
+    copy: bool,
+}
+
+impl Remembered {
+    const EMPTY: Remembered = Remembered {
+        cell: Cell::EMPTY,
+        frames: 0,
+        travel_m: 0.0,
+        age_s: 0.0,
+        copy: false,
+    };
+
+    fn is_empty(&self) -> bool {
+        self.cell.n == 0
+    }
+}
+
+/// Heights of one cell in two frames within this of each other count as the same
+/// ground, metres: a frame that disagrees starts the cell's count again.
+const CONSISTENT_M: f32 = 0.04;
+
+/// The rover-centred terrain map and the fused cells of the last frame.
+#[derive(Debug, Clone)]
+pub struct TerrainMemory {
+    spec: GridSpec,
+    /// Map rows behind the analysis grid and columns on each side of it.
+    behind: usize,
+    side: usize,
+    nx: usize,
+    ny: usize,
+    map: Vec<Remembered>,
+    next: Vec<Remembered>,
+    /// Which map cell each cell of `next` came from (`usize::MAX`: none).
+    source: Vec<usize>,
+    /// Whether each map cell's content landed in `next`.
+    placed: Vec<bool>,
+    fused: Vec<Cell>,
+    min_points: u32,
+    min_frames: u16,
+    max_travel_m: f32,
+    max_age_s: f32,
+    remembered: u32,
+}
+
+/// Width of the map beyond the corridor on each side, metres.
+const SIDE_MARGIN_M: f64 = 0.2;
+
+impl TerrainMemory {
+    /// An empty map for the analysis grid `spec`, sized and allocated once.
+    pub fn new(config: &Config, spec: GridSpec) -> Self {
+        let m = &config.memory;
+        let vs = f64::from(spec.voxel_m);
+        let behind = (m.behind_m / vs).ceil() as usize;
+        let side = (SIDE_MARGIN_M / vs).ceil() as usize;
+        let (nx, ny) = (spec.nx + behind, spec.ny + 2 * side);
+        TerrainMemory {
+            spec,
+            behind,
+            side,
+            nx,
+            ny,
+            map: vec![Remembered::EMPTY; nx * ny],
+            next: vec![Remembered::EMPTY; nx * ny],
+            source: vec![usize::MAX; nx * ny],
+            placed: vec![false; nx * ny],
+            fused: vec![Cell::EMPTY; spec.cell_count()],
+            min_points: config.analysis.min_points_per_cell,
+            min_frames: m.min_frames.min(u32::from(u16::MAX)) as u16,
+            max_travel_m: m.max_travel_m as f32,
+            max_age_s: m.max_age_s as f32,
+            remembered: 0,
+        }
+    }
+
+    /// Forget everything (odometry lost: the map can no longer be placed).
+    pub fn clear(&mut self) {
+        self.map.fill(Remembered::EMPTY);
+    }
+
+    /// The map cell (mx, my) containing the point (x, y), rover frame, metres.
+    fn map_cell_at(&self, p: [f32; 2]) -> Option<usize> {
+        let vs = self.spec.voxel_m;
+        let fx = (p[0] - self.spec.origin[0]) / vs + self.behind as f32;
+        let fy = (p[1] - self.spec.origin[1]) / vs + self.side as f32;
+        (fx >= 0.0 && fy >= 0.0 && fx < self.nx as f32 && fy < self.ny as f32)
+            .then(|| fx as usize * self.ny + fy as usize)
+    }
+
+    /// The centre of map cell `i`, rover frame, metres.
+    fn map_centre(&self, i: usize) -> [f32; 2] {
+        let vs = self.spec.voxel_m;
+        let (mx, my) = (i / self.ny, i % self.ny);
+        [
+            self.spec.origin[0] + (mx as f32 - self.behind as f32 + 0.5) * vs,
+            self.spec.origin[1] + (my as f32 - self.side as f32 + 0.5) * vs,
+        ]
+    }
+
+    /// Move the map by the rover's motion since the last frame, and age it.
+    pub fn advance(&mut self, motion: &Motion) {
+        let step = motion.forward_m.hypot(motion.lateral_m);
+        self.next.fill(Remembered::EMPTY);
+        self.source.fill(usize::MAX);
+        self.placed.fill(false);
+        // Every remembered cell to where its centroid is now; when two land in one
+        // cell, the one seen more recently stays.
+        for i in 0..self.map.len() {
+            let r = self.map[i];
+            if r.is_empty() || r.copy {
+                continue;
+            }
+            let moved = moved(&r, motion, step);
+            if moved.travel_m > self.max_travel_m || moved.age_s > self.max_age_s {
+                continue;
+            }
+            if let Some(j) = self.map_cell_at([moved.cell.x, moved.cell.y]) {
+                let there = &mut self.next[j];
+                if there.is_empty() || moved.travel_m < there.travel_m {
+                    *there = moved;
+                    if let Some(lost) = self.placed.get_mut(self.source[j]) {
+                        *lost = false;
+                    }
+                    self.source[j] = i;
+                    self.placed[i] = true;
+                }
+            }
+        }
+        // Two centroids in one cell leave a cell that none lands in (a turn does this
+        // often, small steps now and then). The one that lost goes to the empty cell
+        // beside where it landed nearest its centroid...
+        let vs = self.spec.voxel_m;
+        for i in 0..self.map.len() {
+            let r = self.map[i];
+            if r.is_empty() || r.copy || self.placed[i] {
+                continue;
+            }
+            let moved = moved(&r, motion, step);
+            if moved.travel_m > self.max_travel_m || moved.age_s > self.max_age_s {
+                continue;
+            }
+            let p = [moved.cell.x, moved.cell.y];
+            let free = [[-vs, 0.0], [vs, 0.0], [0.0, -vs], [0.0, vs]]
+                .into_iter()
+                .filter_map(|[dx, dy]| self.map_cell_at([p[0] + dx, p[1] + dy]))
+                .filter(|&j| self.next[j].is_empty())
+                .min_by(|&a, &b| {
+                    let d = |j: usize| {
+                        let c = self.map_centre(j);
+                        (c[0] - p[0]).hypot(c[1] - p[1])
+                    };
+                    d(a).total_cmp(&d(b))
+                });
+            if let Some(j) = free {
+                self.next[j] = moved;
+                self.placed[i] = true;
+            }
+        }
+        // ...and a cell still empty takes a copy of the cell that was under its centre
+        // when that one's centroid now lies within a cell of it: a remembered surface
+        // has no holes that the motion made.
+        for j in 0..self.next.len() {
+            if !self.next[j].is_empty() {
+                continue;
+            }
+            let centre = self.map_centre(j);
+            let Some(i) = self.map_cell_at(motion.unapply(centre)) else {
+                continue;
+            };
+            let r = self.map[i];
+            if r.is_empty() || r.copy {
+                continue;
+            }
+            let moved = moved(&r, motion, step);
+            let near =
+                (moved.cell.x - centre[0]).abs() <= vs && (moved.cell.y - centre[1]).abs() <= vs;
+            if near && moved.travel_m <= self.max_travel_m && moved.age_s <= self.max_age_s {
+                self.next[j] = Remembered {
+                    copy: true,
+                    ..moved
+                };
+            }
+        }
+        std::mem::swap(&mut self.map, &mut self.next);
+    }
+
+    /// Fuse a frame's cells into the map and build the cells the analysis sees:
+    ///
+    /// - a cell wholly in the camera's view now (`expected`) is the frame's, seen or
+    ///   not, and when seen it replaces what was remembered there;
+    /// - a cell outside it, or only partly in it (the image's edges), is the
+    ///   remembered one when that is trusted (seen whole by `min_frames` frames at a
+    ///   consistent height): a partial view of a cell is a biased one. Otherwise it
+    ///   is the frame's, and the frame's view is remembered.
+    ///
+    /// Returns how many cells came from memory.
+    pub fn fuse(&mut self, frame: &[Cell], expected: &[bool]) -> u32 {
+        let s = self.spec;
+        let mut remembered = 0u32;
+        for ix in 0..s.nx {
+            for iy in 0..s.ny {
+                let c = s.cell(ix, iy);
+                let m = (ix + self.behind) * self.ny + iy + self.side;
+                let now = frame[c];
+                let seen = now.n >= self.min_points;
+                let r = &mut self.map[m];
+                let same = !r.is_empty() && (r.cell.z - now.z).abs() <= CONSISTENT_M;
+                let trusted = r.frames >= self.min_frames && r.cell.n >= self.min_points;
+                if !expected[c] && trusted {
+                    if seen && same {
+                        r.travel_m = 0.0;
+                        r.age_s = 0.0;
+                    }
+                    self.fused[c] = r.cell;
+                    remembered += 1;
+                    continue;
+                }
+                if seen {
+                    let frames = if same { r.frames.saturating_add(1) } else { 1 };
+                    *r = Remembered {
+                        cell: now,
+                        frames,
+                        travel_m: 0.0,
+                        age_s: 0.0,
+                        copy: false,
+                    };
+                }
+                self.fused[c] = now;
+            }
+        }
+        self.remembered = remembered;
+        remembered
+    }
+
+    /// The cells of the last [`TerrainMemory::fuse`], analysis grid layout.
+    pub fn cells(&self) -> &[Cell] {
+        &self.fused
+    }
+
+    /// Cells the last fuse took from memory.
+    pub fn remembered(&self) -> u32 {
+        self.remembered
+    }
+
+    /// How long ago and how far back each analysis-grid cell was last seen
+    /// (`None`: nothing remembered there), for the pictures: (seconds, metres).
+    pub fn age_at(&self, ix: usize, iy: usize) -> Option<(f32, f32)> {
+        let r = self
+            .map
+            .get((ix + self.behind) * self.ny + iy + self.side)?;
+        (!r.is_empty()).then_some((r.age_s, r.travel_m))
+    }
+}
+
+/// A remembered cell moved by `motion` (its points' centroids carried exactly) and
+/// aged by it.
+fn moved(r: &Remembered, motion: &Motion, step: f32) -> Remembered {
+    let mut out = *r;
+    let c = &mut out.cell;
+    [c.x, c.y] = motion.apply([c.x, c.y]);
+    c.crest_xy = motion.apply(c.crest_xy);
+    c.foot_xy = motion.apply(c.foot_xy);
+    out.travel_m += step;
+    out.age_s += motion.dt_s;
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn setup() -> (Config, GridSpec) {
+        let c = Config::default();
+        let spec = GridSpec::from_config(&c);
+        (c, spec)
+    }
+
+    /// A frame with one cell seen at (x, y) and height z.
+    fn frame_with(spec: &GridSpec, x: f32, y: f32, z: f32) -> Vec<Cell> {
+        let mut cells = vec![Cell::EMPTY; spec.cell_count()];
+        let (ix, iy) = spec.cell_at(x, y).unwrap();
+        cells[spec.cell(ix, iy)] = Cell {
+            n: 20,
+            x,
+            y,
+            z,
+            top: z,
+            low: z,
+            crest: z,
+            foot: z,
+            crest_xy: [x, y],
+            foot_xy: [x, y],
+        };
+        cells
+    }
+
+    fn seen_at(m: &TerrainMemory, spec: &GridSpec) -> Vec<(f32, f32)> {
+        m.cells()
+            .iter()
+            .filter(|c| c.n > 0)
+            .map(|c| (c.x, c.y))
+            .inspect(|&(x, y)| assert!(spec.cell_at(x, y).is_some()))
+            .collect()
+    }
+
+    #[test]
+    fn small_steps_move_a_remembered_cell_exactly_without_drift() {
+        let (cfg, spec) = setup();
+        let mut m = TerrainMemory::new(&cfg, spec);
+        let blind = vec![false; spec.cell_count()];
+        let f = frame_with(&spec, 1.012, 0.41, 0.15);
+        m.fuse(&f, &blind);
+        m.fuse(&f, &blind); // seen twice: trusted
+        let empty = vec![Cell::EMPTY; spec.cell_count()];
+        // 90 steps of 1 cm (under half a cell each): the cell must still arrive.
+        for _ in 0..90 {
+            m.advance(&Motion {
+                forward_m: 0.01,
+                dt_s: 0.033,
+                ..Motion::default()
+            });
+            m.fuse(&empty, &blind);
+        }
+        let at = seen_at(&m, &spec);
+        assert_eq!(at.len(), 1, "{at:?}");
+        assert!(
+            (at[0].0 - 0.112).abs() < 1e-4 && (at[0].1 - 0.41).abs() < 1e-4,
+            "{at:?}"
+        );
+    }
+
+    #[test]
+    fn a_turn_carries_cells_round_the_rover() {
+        let (cfg, spec) = setup();
+        let mut m = TerrainMemory::new(&cfg, spec);
+        let blind = vec![false; spec.cell_count()];
+        let f = frame_with(&spec, 1.0, 0.5, 0.1);
+        m.fuse(&f, &blind);
+        m.fuse(&f, &blind);
+        let empty = vec![Cell::EMPTY; spec.cell_count()];
+        // Turn 20° left on the spot in 1° steps: the cell swings right, about the origin.
+        for _ in 0..20 {
+            m.advance(&Motion {
+                dheading_rad: 1f32.to_radians(),
+                dt_s: 0.033,
+                ..Motion::default()
+            });
+            m.fuse(&empty, &blind);
+        }
+        let a = -20f32.to_radians();
+        let want = [a.cos() - 0.5 * a.sin(), a.sin() + 0.5 * a.cos()];
+        let at = seen_at(&m, &spec);
+        assert!(!at.is_empty());
+        assert!(
+            at.iter()
+                .all(|p| (p.0 - want[0]).abs() < 1e-3 && (p.1 - want[1]).abs() < 1e-3),
+            "{at:?}, want {want:?}"
+        );
+    }
+
+    #[test]
+    fn one_frame_is_not_remembered_and_old_cells_are_forgotten() {
+        let (cfg, spec) = setup();
+        let blind = vec![false; spec.cell_count()];
+        let empty = vec![Cell::EMPTY; spec.cell_count()];
+        let f = frame_with(&spec, 1.0, 0.4, 0.2);
+        let step = Motion {
+            forward_m: 0.05,
+            dt_s: 0.1,
+            ..Motion::default()
+        };
+        // Seen once: never used out of view.
+        let mut m = TerrainMemory::new(&cfg, spec);
+        m.fuse(&f, &blind);
+        m.advance(&step);
+        assert_eq!(m.fuse(&empty, &blind), 0);
+        // Seen twice at different heights: still one consistent frame.
+        let mut m = TerrainMemory::new(&cfg, spec);
+        m.fuse(&f, &blind);
+        m.fuse(&frame_with(&spec, 1.0, 0.4, 0.3), &blind);
+        m.advance(&step);
+        assert_eq!(m.fuse(&empty, &blind), 0);
+        // Seen twice alike: remembered, until max_travel_m (1.5 m) of travel.
+        let mut m = TerrainMemory::new(&cfg, spec);
+        m.fuse(&f, &blind);
+        m.fuse(&f, &blind);
+        let mut kept = 0;
+        for _ in 0..40 {
+            m.advance(&Motion {
+                forward_m: -0.05, // backwards: the cell stays in the grid
+                dt_s: 0.1,
+                ..Motion::default()
+            });
+            kept += m.fuse(&empty, &blind);
+        }
+        // (The cell at a boundary may be filled by a copy one frame longer.)
+        assert!(
+            (29..=31).contains(&kept),
+            "kept for 1.5 m of 0.05 m steps: {kept}"
+        );
+        // Time alone ages it too (max_age_s = 30 s).
+        let mut m = TerrainMemory::new(&cfg, spec);
+        m.fuse(&f, &blind);
+        m.fuse(&f, &blind);
+        let still = Motion {
+            dt_s: 10.0,
+            ..Motion::default()
+        };
+        let kept: Vec<u32> = (0..4)
+            .map(|_| {
+                m.advance(&still);
+                m.fuse(&empty, &blind)
+            })
+            .collect();
+        assert_eq!(kept, [1, 1, 1, 0]);
+    }
+
+    #[test]
+    fn what_the_camera_sees_now_wins_and_what_it_should_see_is_not_filled() {
+        let (cfg, spec) = setup();
+        let mut m = TerrainMemory::new(&cfg, spec);
+        let blind = vec![false; spec.cell_count()];
+        let rock = frame_with(&spec, 1.0, 0.4, 0.2);
+        m.fuse(&rock, &blind);
+        m.fuse(&rock, &blind);
+        // Seen again lower, wholly in view: the frame's height.
+        let view = vec![true; spec.cell_count()];
+        let ground = frame_with(&spec, 1.0, 0.4, 0.0);
+        m.fuse(&ground, &view);
+        let c = m.cells().iter().find(|c| c.n > 0).unwrap();
+        assert_eq!(c.z, 0.0);
+        // Out of view (or partly), the trusted memory beats a partial view...
+        let mut m = TerrainMemory::new(&cfg, spec);
+        m.fuse(&rock, &view);
+        m.fuse(&rock, &view);
+        m.fuse(&ground, &blind);
+        let c = m.cells().iter().find(|c| c.n > 0).unwrap();
+        assert_eq!(c.z, 0.2);
+        // ...and in view and unseen, nothing is filled from memory.
+        let empty = vec![Cell::EMPTY; spec.cell_count()];
+        assert_eq!(m.fuse(&empty, &view), 0);
+        assert!(m.cells().iter().all(|c| c.n == 0));
+    }
+
+    #[test]
+    fn motion_apply_and_unapply_are_inverse() {
+        let m = Motion {
+            forward_m: 0.3,
+            lateral_m: -0.1,
+            dheading_rad: 0.4,
+            dt_s: 0.1,
+        };
+        let p = [1.2, 0.7];
+        let q = m.unapply(m.apply(p));
+        assert!((q[0] - p[0]).abs() < 1e-6 && (q[1] - p[1]).abs() < 1e-6);
+        // Straight ahead by 0.3 m: a point 1.2 m ahead is 0.9 m ahead.
+        let fwd = Motion {
+            forward_m: 0.3,
+            ..Motion::default()
+        };
+        let p = fwd.apply([1.2, 0.0]);
+        assert!((p[0] - 0.9).abs() < 1e-6 && p[1] == 0.0, "{p:?}");
+    }
+}

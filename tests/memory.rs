@@ -1,0 +1,280 @@
+//! Terrain memory on rendered drives (issue 14): the camera moves along the rover's
+//! path frame by frame, the odometry says how far, and hazards keep their place as
+//! they pass into the blind zone before the wheels.
+
+use rover_terrain::memory::odometry::Untrusted;
+use rover_terrain::memory::{MemoryState, Motion};
+use rover_terrain::sim::{self, Element, Extent, Pose, Terrain};
+use rover_terrain::{Config, HazardKind, Pipeline, Side, Verdict};
+
+/// Forward step per frame of the straight drives, metres.
+const STEP: f64 = 0.05;
+
+/// The nearest hazard of `kind` on `side`, metres.
+fn hazard(v: &Verdict, kind: HazardKind, side: Side) -> Option<f32> {
+    v.hazards
+        .iter()
+        .find(|h| h.kind == kind && h.side == side)
+        .map(|h| h.distance_m)
+}
+
+/// Drive over `terrain` from the origin: before each frame after the first the rover
+/// goes `forward` metres, then turns `turn` radians (`steps[k - 1]`). The pipeline is
+/// told `odometry` × the true forward travel (or no odometry). Returns each frame's
+/// pose and verdict.
+fn drive(terrain: &Terrain, steps: &[(f64, f64)], odometry: Option<f64>) -> Vec<(Pose, Verdict)> {
+    let config = Config::default();
+    let mut p = Pipeline::new(config.clone()).unwrap();
+    let mut pose = Pose::default();
+    let mut out = Vec::new();
+    for k in 0..=steps.len() {
+        let motion = match (k, odometry) {
+            (0, _) | (_, None) => Err(Untrusted::NoOdometry),
+            (_, Some(scale)) => Ok(Motion {
+                forward_m: (steps[k - 1].0 * scale) as f32,
+                dheading_rad: steps[k - 1].1 as f32,
+                dt_s: 0.1,
+                ..Motion::default()
+            }),
+        };
+        if k > 0 {
+            let (fwd, turn) = steps[k - 1];
+            pose.x += fwd * pose.heading.cos();
+            pose.y += fwd * pose.heading.sin();
+            pose.heading += turn;
+        }
+        let frame = sim::render_from(terrain, &config, pose);
+        out.push((pose, p.process_moved(&frame, motion).unwrap().clone()));
+    }
+    out
+}
+
+/// Where the near edge x = `edge` (terrain frame) of what stands in the left track
+/// (0.2 ≤ y ≤ 0.7 m at the start) is nearest ahead of the rover at `pose`, metres.
+fn edge_ahead(pose: Pose, edge: f64) -> f64 {
+    let (s, c) = pose.heading.sin_cos();
+    // A terrain point (edge, y) in the rover frame: x_r = c·(edge − px) + s·(y − py).
+    (0..=50)
+        .map(|i| 0.2 + 0.01 * f64::from(i))
+        .map(|y| c * (edge - pose.x) + s * (y - pose.y))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Near edge of [`block_ahead`], metres.
+const EDGE: f64 = 1.515;
+
+/// A 0.15 m block in the left track, its near edge at [`EDGE`].
+fn block_ahead() -> Terrain {
+    Terrain::new(vec![Element::Block {
+        x_m: EDGE,
+        y_m: 0.45,
+        length_m: 0.3,
+        width_m: 0.3,
+        height_m: 0.15,
+    }])
+}
+
+#[test]
+fn the_renderer_draws_the_same_ground_from_a_pose_as_the_moved_ground() {
+    // Standing 0.5 m on, the block 1.5 m out is the block 1.0 m out from the origin.
+    let config = Config::default();
+    let moved = sim::render_from(
+        &block_ahead(),
+        &config,
+        Pose {
+            x: 0.5,
+            ..Pose::default()
+        },
+    );
+    let near = Terrain::new(vec![Element::Block {
+        x_m: EDGE - 0.5,
+        y_m: 0.45,
+        length_m: 0.3,
+        width_m: 0.3,
+        height_m: 0.15,
+    }]);
+    let here = sim::render(&near, &config);
+    let differ = moved
+        .pixels()
+        .iter()
+        .zip(here.pixels())
+        .filter(|(a, b)| a.abs_diff(**b) > 1)
+        .count();
+    assert!(differ < 20, "{differ} pixels differ by more than 1 mm");
+    // Turned 90° left at the origin, the ground ahead is the terrain's +y: a step up
+    // 1 m along +y shows as a step 1 m ahead.
+    let side_step = Terrain::new(vec![Element::Block {
+        x_m: -5.0,
+        y_m: 5.0 + 1.0,
+        length_m: 10.0,
+        width_m: 10.0,
+        height_m: 0.2,
+    }]);
+    let turned = Pose {
+        heading: std::f64::consts::FRAC_PI_2,
+        ..Pose::default()
+    };
+    let ahead = Terrain::new(vec![Element::Step {
+        x_m: 1.0,
+        height_m: 0.2,
+        extent: Extent::Full,
+    }]);
+    let a = sim::render_from(&side_step, &config, turned);
+    let b = sim::render(&ahead, &config);
+    let differ = a
+        .pixels()
+        .iter()
+        .zip(b.pixels())
+        .filter(|(x, y)| x.abs_diff(**y) > 1)
+        .count();
+    assert!(differ < 50, "{differ} pixels differ by more than 1 mm");
+}
+
+/// Checks a drive toward [`block_ahead`]: the step is reported in every frame, where
+/// the first frame put it less the travel since (± `tol(true distance)` metres),
+/// never behind the rover.
+fn assert_tracked(run: &[(Pose, Verdict)], tol: impl Fn(f64) -> f64) {
+    let d0 = f64::from(hazard(&run[0].1, HazardKind::Step, Side::Left).expect("seen at the start"));
+    // The wheel meets the block this far before its edge (the first frame shows it).
+    let offset = edge_ahead(run[0].0, EDGE) - d0;
+    for (k, (pose, v)) in run.iter().enumerate() {
+        let want = edge_ahead(*pose, EDGE) - offset;
+        let got = hazard(v, HazardKind::Step, Side::Left).unwrap_or_else(|| {
+            panic!(
+                "frame {k}: the block is lost at {want:.3} m: {:?}",
+                v.hazards
+            )
+        });
+        let got = f64::from(got);
+        assert!(
+            (got - want).abs() <= tol(want),
+            "frame {k}: {got:.3} m, expected {want:.3}"
+        );
+        assert!(got >= 0.0, "frame {k}: behind the rover");
+        let state = if k == 0 {
+            MemoryState::SingleFrame
+        } else {
+            MemoryState::Fused
+        };
+        assert_eq!(v.memory.state, state, "frame {k}");
+    }
+}
+
+#[test]
+fn a_block_keeps_its_place_into_the_blind_zone_down_to_the_wheels() {
+    // Straight on in 5 cm steps until the edge is 0.165 m ahead.
+    let steps = [(STEP, 0.0); 27];
+    let fused = drive(&block_ahead(), &steps, Some(1.0));
+    assert_tracked(&fused, |_| 0.02);
+    assert!(fused.last().unwrap().1.memory.remembered_cells > 0);
+    // Alone, each frame loses the block's near edge in the blind zone (from 0.64 m):
+    // it reports what it sees of the block (its far part), or nothing.
+    let single = drive(&block_ahead(), &steps, None);
+    let lost = single.iter().filter(|(pose, v)| {
+        let want = edge_ahead(*pose, EDGE) - 0.1;
+        hazard(v, HazardKind::Step, Side::Left).is_none_or(|d| f64::from(d) > want + 0.1)
+    });
+    assert!(lost.count() >= 8, "single frames keep the near edge?");
+    for (_, v) in &single {
+        assert_eq!(v.memory.state, MemoryState::SingleFrame);
+        assert_eq!(v.memory.reason, Some("no_odometry"));
+    }
+}
+
+#[test]
+fn steps_of_two_to_ten_centimetres_with_turns_keep_the_block_in_place() {
+    // Uneven steps, with a turn of up to 2° now and then (heading within ±4°).
+    let steps: Vec<(f64, f64)> = (0..30)
+        .map(|k| {
+            let fwd = [0.02, 0.07, 0.04, 0.1, 0.03][k % 5];
+            let turn = [0.0, 2.0, 0.0, -1.5, 0.0, -2.0, 1.0][k % 7];
+            (fwd, f64::to_radians(turn))
+        })
+        .take_while({
+            let mut x = 0.0;
+            move |s| {
+                x += s.0;
+                x < EDGE - 0.2
+            }
+        })
+        .collect();
+    assert!(steps.len() > 20);
+    // Steps that are not whole cells move the edge within the 5 cm grid: a single
+    // frame in full view already quantises the step's distance by up to half a cell,
+    // and where the edge leaves the view the frame's cells and the remembered ones
+    // meet: within 4 cm.
+    assert_tracked(&drive(&block_ahead(), &steps, Some(1.0)), |_| 0.04);
+}
+
+#[test]
+fn wheel_slip_errs_by_the_slip_only_and_never_behind_the_rover() {
+    // The odometry says 10 % more than the wheels made good: remembered cells run
+    // ahead of the truth by 10 % of the travel since they were last in view (from
+    // ~0.7 m), so the hazard is reported nearer, never farther.
+    let steps = [(STEP, 0.0); 27];
+    let slipping = drive(&block_ahead(), &steps, Some(1.1));
+    assert_tracked(&slipping, |truth| 0.02 + 0.1 * (0.75 - truth).max(0.0));
+}
+
+#[test]
+fn an_obstacle_in_one_frame_only_is_gone_at_once() {
+    let config = Config::default();
+    let mut p = Pipeline::new(config.clone()).unwrap();
+    let flat = Terrain::flat();
+    let block = Terrain::new(vec![Element::Block {
+        x_m: 1.2,
+        y_m: -0.45,
+        length_m: 0.2,
+        width_m: 0.2,
+        height_m: 0.2,
+    }]);
+    let step = Motion {
+        forward_m: 0.02,
+        dt_s: 0.05,
+        ..Motion::default()
+    };
+    for k in 0..8 {
+        let t = if k == 3 { &block } else { &flat };
+        let pose = Pose {
+            x: 0.02 * k as f64,
+            ..Pose::default()
+        };
+        let frame = sim::render_from(t, &config, pose);
+        let motion = if k == 0 {
+            Err(Untrusted::NoOdometry)
+        } else {
+            Ok(step)
+        };
+        let v = p.process_moved(&frame, motion).unwrap();
+        let blocked = hazard(v, HazardKind::Step, Side::Right).is_some();
+        assert_eq!(blocked, k == 3, "frame {k}: {:?}", v.hazards);
+    }
+}
+
+#[test]
+fn with_the_memory_off_the_verdicts_are_the_single_frames() {
+    let mut config = Config::default();
+    config.memory.enabled = false;
+    let mut off = Pipeline::new(config.clone()).unwrap();
+    let mut on = Pipeline::new(Config::default()).unwrap();
+    let terrain = block_ahead();
+    for k in 0..4 {
+        let pose = Pose {
+            x: 0.1 * k as f64,
+            ..Pose::default()
+        };
+        let frame = sim::render_from(&terrain, &config, pose);
+        let motion = Motion {
+            forward_m: 0.1,
+            dt_s: 0.1,
+            ..Motion::default()
+        };
+        let a = off.process_moved(&frame, Ok(motion)).unwrap().clone();
+        let b = on.process(&frame).unwrap().clone();
+        assert_eq!(a.memory.state, MemoryState::Off);
+        assert_eq!(
+            (a.decision, &a.hazards, a.feature),
+            (b.decision, &b.hazards, b.feature)
+        );
+    }
+}
