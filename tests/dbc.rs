@@ -43,6 +43,7 @@ fn the_dbc_matches_the_encoder() {
     let h = Heartbeat {
         state: ServiceState::Degraded,
         camera_ok: true,
+        memory_fused: true,
         frame_rate_chz: 2997,
         dropped: 12,
         seq: 200,
@@ -74,6 +75,7 @@ fn the_dbc_matches_the_encoder() {
         (can::VERDICT_EXT_ID, "Seq", f64::from(0xA1B2_C3D4u32)),
         (can::HEARTBEAT_ID, "State", 2.0),
         (can::HEARTBEAT_ID, "CameraOk", 1.0),
+        (can::HEARTBEAT_ID, "MemoryFused", 1.0),
         (can::HEARTBEAT_ID, "FrameRate", 29.97),
         (can::HEARTBEAT_ID, "Dropped", 12.0),
         (can::HEARTBEAT_ID, "Counter", 200.0),

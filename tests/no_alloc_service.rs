@@ -1,14 +1,17 @@
 //! The whole service, once warm, allocates nothing per frame: camera thread (replaying
 //! from memory), analysis, link thread writing COBS frames to a real pseudo-terminal,
-//! heartbeats, and watchdog pings to a real notify socket. A counting global
-//! allocator watches 45 frames (1.5 s) after a warm-up of 15.
+//! heartbeats, watchdog pings to a real notify socket, and the controller's odometry
+//! coming back on the pty into the terrain memory. A counting global allocator
+//! watches 45 frames (1.5 s) after a warm-up of 15.
 
 use std::io::Read;
+use std::io::Write;
 use std::os::unix::net::UnixDatagram;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Duration;
 
-use rover_terrain::link::proto::serial::{Decoder, Message};
+use rover_terrain::link::proto::serial::{self, Decoder, Message};
+use rover_terrain::link::proto::Odometry;
 use rover_terrain::link::LinkTarget;
 use rover_terrain::service::{self, Notifier, Options, StopReason};
 use rover_terrain::Config;
@@ -71,12 +74,28 @@ fn the_running_service_allocates_nothing_per_frame() {
         }
     });
 
+    // The motor controller: odometry at 50 Hz on the same pty, a slow drive, until the
+    // reader is done (stack only: it runs while allocations are counted).
+    let mut controller = master.try_clone_native().unwrap();
+    let driving = std::sync::Arc::new(AtomicBool::new(true));
+    let still_driving = std::sync::Arc::clone(&driving);
+    let controller = std::thread::spawn(move || {
+        let mut k = 0u64;
+        while still_driving.load(Ordering::Relaxed) {
+            let t = k as f64 * 0.02;
+            let o = Odometry::from_pose(k as u8, k * 20, 0.1 * t, 0.0, 0.05 * t);
+            let _ = controller.write_all(&serial::encode(&Message::Odometry(o)));
+            k += 1;
+            std::thread::sleep(Duration::from_millis(20)); // the controller's pace
+        }
+    });
+
     // The pty reader: turns counting on after the warm-up, off after the watched frames,
     // then stops the service.
     let reader = std::thread::spawn(move || {
         let mut decoder = Decoder::new();
         let mut buf = [0u8; 1024];
-        let (mut verdicts, mut heartbeats) = (0usize, 0usize);
+        let (mut verdicts, mut heartbeats, mut fused) = (0usize, 0usize, 0usize);
         while verdicts < WARM_UP + WATCHED {
             let Ok(n) = master.read(&mut buf) else {
                 continue;
@@ -92,19 +111,22 @@ fn the_running_service_allocates_nothing_per_frame() {
                             COUNTING.store(false, Ordering::SeqCst);
                         }
                     }
-                    Some(Ok(Message::Heartbeat(_))) if COUNTING.load(Ordering::Relaxed) => {
-                        heartbeats += 1
+                    Some(Ok(Message::Heartbeat(h))) if COUNTING.load(Ordering::Relaxed) => {
+                        heartbeats += 1;
+                        fused += usize::from(h.memory_fused);
                     }
                     _ => {}
                 }
             }
         }
         drop(stop_tx);
-        (heartbeats, master)
+        (heartbeats, fused, master)
     });
 
     let summary = service::run(options, notifier, stop_rx).unwrap();
-    let (heartbeats, _master) = reader.join().unwrap();
+    let (heartbeats, fused, _master) = reader.join().unwrap();
+    driving.store(false, Ordering::Relaxed);
+    controller.join().unwrap();
     notify_reader.join().unwrap();
     drop(slave);
 
@@ -113,6 +135,10 @@ fn the_running_service_allocates_nothing_per_frame() {
     assert!(
         heartbeats >= 5,
         "heartbeats went out while watched: {heartbeats}"
+    );
+    assert!(
+        fused >= 3,
+        "the terrain memory fused frames over the odometry while watched: {fused} of {heartbeats}"
     );
     assert!(
         pings.load(Ordering::Relaxed) >= 5,

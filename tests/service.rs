@@ -39,6 +39,8 @@ struct Harness {
     socket_path: std::path::PathBuf,
     pty_path: String,
     _slave: TTYPort,
+    /// The pty's controller end, for writing what the motor controller sends.
+    controller: TTYPort,
     events: mpsc::Receiver<(Instant, Event)>,
     log: Vec<(Instant, Event)>,
 }
@@ -65,6 +67,7 @@ impl Harness {
         let (mut master, slave) = TTYPort::pair().expect("pseudo-terminal pair");
         master.set_timeout(Duration::from_millis(100)).unwrap();
         let pty_path = slave.name().unwrap();
+        let controller = master.try_clone_native().unwrap();
         std::thread::spawn(move || {
             let mut decoder = Decoder::new();
             let mut buf = [0u8; 1024];
@@ -93,6 +96,7 @@ impl Harness {
             socket_path,
             pty_path,
             _slave: slave,
+            controller,
             events,
             log: Vec::new(),
         }
@@ -558,4 +562,44 @@ fn frames_of_the_wrong_size_are_rejected_and_counted_never_analysed() {
         .filter(|l| l.contains("\"type\":\"verdict\""))
         .count();
     assert_eq!(verdicts, 3, "two frames and the final stop");
+}
+
+#[test]
+fn odometry_from_the_controller_fuses_frames_and_its_silence_falls_back() {
+    use std::io::Write;
+    let mut h = Harness::new();
+    let child = h.spawn(&["--loop", "--frames", "120"], 2_000_000);
+    // The motor controller: odometry at 50 Hz (a slow drive) for 1.5 s, then nothing.
+    let mut ctl = h.controller.try_clone_native().unwrap();
+    let controller = std::thread::spawn(move || {
+        use rover_terrain::link::proto::{serial, Odometry};
+        for k in 0..75u16 {
+            let t = f64::from(k) * 0.02;
+            let o = Odometry::from_pose(k as u8, u64::from(k) * 20, 0.1 * t, 0.0, 0.0);
+            ctl.write_all(&serial::encode(&Message::Odometry(o)))
+                .unwrap();
+            std::thread::sleep(Duration::from_millis(20)); // the controller's own pace
+        }
+    });
+    let fused = |e: &Event| matches!(e, Event::Heartbeat(hb) if hb.memory_fused);
+    h.collect_until("a heartbeat saying the memory is fused", |log| {
+        log.iter().any(|(_, e)| fused(e))
+    });
+    h.collect_until("a heartbeat saying it fell back, after the odometry stopped", |log| {
+        let first = log.iter().position(|(_, e)| fused(e)).unwrap();
+        log[first..].iter().any(|(_, e)| {
+            matches!(e, Event::Heartbeat(hb) if !hb.memory_fused && hb.state == ServiceState::Running)
+        })
+    });
+    controller.join().unwrap();
+    let stderr = finish(child);
+    assert!(
+        stderr.contains("terrain memory: fusing frames over odometry"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("terrain memory: single frames (odometry_timeout)"),
+        "{stderr}"
+    );
+    assert!(!h.log.iter().any(|(_, e)| matches!(e, Event::BadFrame)));
 }

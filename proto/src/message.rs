@@ -83,6 +83,9 @@ pub struct Heartbeat {
     pub state: ServiceState,
     /// Whether the camera delivers frames.
     pub camera_ok: bool,
+    /// Whether the last verdict was fused with the terrain memory (odometry
+    /// trusted); false when the memory is off or fell back to single frames.
+    pub memory_fused: bool,
     /// Frame rate, 0.01 Hz.
     pub frame_rate_chz: u16,
     /// Frames dropped since start (saturating).
@@ -279,7 +282,7 @@ impl Heartbeat {
     ///
     /// ```text
     /// byte 0  state (0 starting, 1 running, 2 degraded, 3 stopping)
-    /// byte 1  flags: bit 0 camera ok; bits 1-7 0
+    /// byte 1  flags: bit 0 camera ok; bit 1 terrain memory fused; bits 2-7 0
     /// byte 2-3  frame rate, 0.01 Hz, u16 LE
     /// byte 4-5  dropped frames, u16 LE (saturating)
     /// byte 6  heartbeat counter
@@ -290,7 +293,7 @@ impl Heartbeat {
         let d = self.dropped.to_le_bytes();
         [
             self.state as u8,
-            u8::from(self.camera_ok),
+            u8::from(self.camera_ok) | u8::from(self.memory_fused) << 1,
             r[0],
             r[1],
             d[0],
@@ -303,7 +306,7 @@ impl Heartbeat {
     /// Decode 8 bytes.
     pub fn decode(b: &[u8; 8]) -> Result<Self, DecodeError> {
         let state = ServiceState::from_bits(b[0]).ok_or(DecodeError::Field(0))?;
-        if b[1] > 1 {
+        if b[1] > 3 {
             return Err(DecodeError::Field(1));
         }
         if b[7] != 0 {
@@ -311,7 +314,8 @@ impl Heartbeat {
         }
         Ok(Heartbeat {
             state,
-            camera_ok: b[1] == 1,
+            camera_ok: b[1] & 1 == 1,
+            memory_fused: b[1] & 2 == 2,
             frame_rate_chz: u16::from_le_bytes([b[2], b[3]]),
             dropped: u16::from_le_bytes([b[4], b[5]]),
             seq: b[6],

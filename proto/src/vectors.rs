@@ -40,6 +40,7 @@ pub fn sample_heartbeat() -> Heartbeat {
     Heartbeat {
         state: ServiceState::Running,
         camera_ok: true,
+        memory_fused: false,
         frame_rate_chz: 3000,
         dropped: 2,
         seq: 9,

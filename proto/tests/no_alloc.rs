@@ -54,6 +54,7 @@ fn encode_and_decode_allocate_nothing() {
     let h = Heartbeat {
         state: ServiceState::Running,
         camera_ok: true,
+        memory_fused: true,
         frame_rate_chz: 3000,
         dropped: 0,
         seq: 1,

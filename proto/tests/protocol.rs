@@ -51,11 +51,12 @@ fn heartbeat_strategy() -> impl Strategy<Value = Heartbeat> {
     (
         0u8..4,
         any::<bool>(),
+        any::<bool>(),
         any::<u16>(),
         any::<u16>(),
         any::<u8>(),
     )
-        .prop_map(|(s, cam, rate, dropped, seq)| Heartbeat {
+        .prop_map(|(s, cam, mem, rate, dropped, seq)| Heartbeat {
             state: [
                 ServiceState::Starting,
                 ServiceState::Running,
@@ -63,6 +64,7 @@ fn heartbeat_strategy() -> impl Strategy<Value = Heartbeat> {
                 ServiceState::Stopping,
             ][s as usize],
             camera_ok: cam,
+            memory_fused: mem,
             frame_rate_chz: rate,
             dropped,
             seq,

@@ -86,6 +86,13 @@ pub trait Transport: Send {
     /// Send one odometry message (the controller's direction: the bench's controller
     /// simulator uses the same transports).
     fn send_odometry(&mut self, o: &proto::Odometry) -> Result<(), Error>;
+    /// Hand every odometry message that has arrived from the controller to `sink`,
+    /// without waiting (other messages and corrupt frames are skipped). A transport
+    /// with no way back (stdout) has none.
+    fn receive_odometry(&mut self, sink: &mut dyn FnMut(proto::Odometry)) -> Result<(), Error> {
+        let _ = sink;
+        Ok(())
+    }
     /// Push buffered bytes out.
     fn flush(&mut self) -> Result<(), Error>;
 }

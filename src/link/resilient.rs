@@ -129,6 +129,22 @@ impl Resilient {
         self.send(Instant::now(), |t| t.send_heartbeat(h))
     }
 
+    /// Hand the odometry that arrived on the open transport to `sink` (nothing while
+    /// the link is down; a read that fails fails the link like a send).
+    pub fn receive_odometry(&mut self, sink: &mut dyn FnMut(proto::Odometry)) -> bool {
+        let now = Instant::now();
+        let Some(t) = self.inner.as_mut() else {
+            return false;
+        };
+        match t.receive_odometry(sink) {
+            Ok(()) => true,
+            Err(e) => {
+                self.fail(now, &e);
+                false
+            }
+        }
+    }
+
     /// Flush the open transport, if any.
     pub fn flush(&mut self) -> bool {
         self.send(Instant::now(), |t| t.flush())

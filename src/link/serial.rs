@@ -1,6 +1,6 @@
-use std::io::Write;
+use std::io::{Read, Write};
 
-use rover_terrain_proto::serial::{encode, Message};
+use rover_terrain_proto::serial::{encode, Decoder, Message};
 
 use super::{link_err, proto, Transport, WRITE_TIMEOUT};
 use crate::Error;
@@ -9,6 +9,8 @@ use crate::Error;
 pub struct SerialTransport {
     path: String,
     port: Box<dyn serialport::SerialPort>,
+    /// The controller's frames coming back (odometry).
+    decoder: Decoder,
 }
 
 impl SerialTransport {
@@ -21,6 +23,7 @@ impl SerialTransport {
         Ok(SerialTransport {
             path: path.to_string(),
             port,
+            decoder: Decoder::new(),
         })
     }
 
@@ -43,6 +46,29 @@ impl Transport for SerialTransport {
 
     fn send_odometry(&mut self, o: &proto::Odometry) -> Result<(), Error> {
         self.write(&Message::Odometry(*o))
+    }
+
+    fn receive_odometry(&mut self, sink: &mut dyn FnMut(proto::Odometry)) -> Result<(), Error> {
+        let err = |e: &dyn std::fmt::Display| link_err(&format!("serial:{}", self.path), e);
+        let mut buf = [0u8; 256];
+        loop {
+            let waiting = self.port.bytes_to_read().map_err(|e| err(&e))? as usize;
+            if waiting == 0 {
+                return Ok(());
+            }
+            let n = self
+                .port
+                .read(&mut buf[..waiting.min(256)])
+                .map_err(|e| err(&e))?;
+            for &b in &buf[..n] {
+                if let Some(Ok(Message::Odometry(o))) = self.decoder.push(b) {
+                    sink(o);
+                }
+            }
+            if n == 0 {
+                return Ok(());
+            }
+        }
     }
 
     fn flush(&mut self) -> Result<(), Error> {

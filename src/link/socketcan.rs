@@ -56,6 +56,33 @@ impl Transport for SocketCanTransport {
         self.write(&[can::odometry_frame(o)])
     }
 
+    fn receive_odometry(&mut self, sink: &mut dyn FnMut(proto::Odometry)) -> Result<(), Error> {
+        let err = |e: &dyn std::fmt::Display| link_err(&format!("can:{}", self.iface), e);
+        self.socket.set_nonblocking(true).map_err(|e| err(&e))?;
+        let result = loop {
+            match self.socket.read_frame() {
+                Ok(f) => {
+                    let id = match f.id() {
+                        socketcan::Id::Standard(id) => id.as_raw(),
+                        socketcan::Id::Extended(_) => continue,
+                    };
+                    if id != can::ODOMETRY_ID || f.data().len() != 8 {
+                        continue;
+                    }
+                    let mut data = [0u8; 8];
+                    data.copy_from_slice(f.data());
+                    if let Ok(o) = proto::Odometry::decode(&data) {
+                        sink(o);
+                    }
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => break Ok(()),
+                Err(e) => break Err(err(&e)),
+            }
+        };
+        self.socket.set_nonblocking(false).map_err(|e| err(&e))?;
+        result
+    }
+
     fn flush(&mut self) -> Result<(), Error> {
         Ok(())
     }

@@ -128,6 +128,7 @@ impl From<&proto::Verdict> for VerdictJson {
 pub struct HeartbeatJson {
     camera_ok: bool,
     dropped: u16,
+    memory_fused: bool,
     frame_rate_hz: f64,
     seq: u8,
     state: &'static str,
@@ -140,6 +141,7 @@ impl From<&proto::Heartbeat> for HeartbeatJson {
         HeartbeatJson {
             camera_ok: h.camera_ok,
             dropped: h.dropped,
+            memory_fused: h.memory_fused,
             frame_rate_hz: f64::from(h.frame_rate_chz) / 100.0,
             seq: h.seq,
             state: match h.state {

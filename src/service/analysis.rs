@@ -9,10 +9,11 @@ use std::time::{Duration, Instant};
 use crossbeam_channel::{select, Receiver, Sender};
 
 use super::camera::{CameraMsg, Slot};
-use super::link::LinkMsg;
+use super::link::{LinkMsg, OdometryIn};
 use super::{bump, Counters, StopReason};
 use crate::level::Leveler;
 use crate::link::{proto, wire};
+use crate::memory::odometry::{Tracker, Untrusted};
 use crate::{Config, Pipeline};
 
 /// The analysis stage and what it counts.
@@ -23,6 +24,13 @@ pub(super) struct Stage {
     counters: Arc<Counters>,
     link_tx: Sender<LinkMsg>,
     free_tx: Sender<Slot>,
+    /// The controller's odometry, as the link thread reads it, and what it tells of
+    /// the motion between frames (`None`: the terrain memory is off).
+    odometry_rx: Receiver<OdometryIn>,
+    tracker: Option<Tracker>,
+    /// Why the last frame stood alone (`None`: it was fused), for logging changes.
+    alone: Option<Untrusted>,
+    start: Instant,
     /// No frame for this long and the fail-safe starts.
     timeout: Duration,
     /// Then an unknown verdict this often.
@@ -53,7 +61,7 @@ impl Stage {
         config: &Config,
         frame_limit: Option<u64>,
         counters: Arc<Counters>,
-        link_tx: Sender<LinkMsg>,
+        (link_tx, odometry_rx): (Sender<LinkMsg>, Receiver<OdometryIn>),
         free_tx: Sender<Slot>,
     ) -> Self {
         let timeout = Duration::from_millis(config.service.frame_timeout_ms);
@@ -64,6 +72,10 @@ impl Stage {
             counters,
             link_tx,
             free_tx,
+            odometry_rx,
+            tracker: config.memory.enabled.then(|| Tracker::new(&config.memory)),
+            alone: Some(Untrusted::NoOdometry),
+            start: Instant::now(),
             timeout,
             heartbeat: Duration::from_millis(config.service.heartbeat_ms),
             frame_limit,
@@ -105,9 +117,10 @@ impl Stage {
         }
         let t0 = Instant::now();
         let queued = t0 - slot.arrived;
+        let motion = self.motion(t0);
         let outcome = self
             .pipeline
-            .process(&slot.frame)
+            .process_moved(&slot.frame, motion)
             .map(|v| wire::to_wire(v, 0.0));
         let process = t0.elapsed();
         let arrived = slot.arrived;
@@ -139,6 +152,35 @@ impl Stage {
             log::warn!("frames flowing again");
         }
         self.frame_limit.is_some_and(|n| self.analysed >= n)
+    }
+
+    /// The rover's motion since the previous frame from the odometry received, for a
+    /// frame analysed at `now`; says in the log and the heartbeat when the terrain
+    /// memory falls back to single frames and when it is back.
+    fn motion(&mut self, now: Instant) -> Result<crate::memory::Motion, Untrusted> {
+        let secs = |t: Instant| t.saturating_duration_since(self.start).as_secs_f64();
+        let Some(tracker) = self.tracker.as_mut() else {
+            return Err(Untrusted::NoOdometry);
+        };
+        while let Ok((o, at)) = self.odometry_rx.try_recv() {
+            tracker.on_odometry(o, secs(at));
+        }
+        let motion = tracker.motion(secs(now));
+        let alone = motion.err();
+        if alone != self.alone {
+            match alone {
+                None => log::info!("terrain memory: fusing frames over odometry"),
+                Some(why) => log::warn!(
+                    "terrain memory: single frames ({}), the map starts again",
+                    why.as_str()
+                ),
+            }
+            self.alone = alone;
+        }
+        self.counters
+            .memory_fused
+            .store(alone.is_none(), Ordering::Relaxed);
+        motion
     }
 
     /// The fail-safe timer: no frame since the timeout and an unknown verdict goes
@@ -247,7 +289,7 @@ mod tests {
             &config,
             None,
             Arc::clone(&counters),
-            link_tx,
+            (link_tx, crossbeam_channel::never()),
             free_tx,
         );
         let start = stage.next_unknown - stage.timeout;

@@ -14,6 +14,12 @@ use crate::{Config, Error};
 
 /// Verdicts waiting for the link thread at most.
 const LINK_QUEUE: usize = 16;
+/// Odometry messages waiting for the analysis stage at most (the stage keeps only
+/// the latest: more would be lost time, not lost travel).
+const ODOMETRY_QUEUE: usize = 64;
+
+/// An odometry message from the controller and when the link thread read it.
+pub(super) type OdometryIn = (proto::Odometry, Instant);
 
 /// What analysis hands to the link thread.
 pub(super) enum LinkMsg {
@@ -30,18 +36,28 @@ pub(super) enum LinkMsg {
     Stop(proto::Verdict),
 }
 
-/// Start the link thread; verdicts go in through the returned sender.
+/// The link thread's ends: verdicts in, the controller's odometry out, its handle.
+pub(super) struct Started {
+    pub link_tx: Sender<LinkMsg>,
+    pub odometry_rx: Receiver<OdometryIn>,
+    pub handle: thread::JoinHandle<LinkReport>,
+}
+
+/// Start the link thread; verdicts go in through the returned sender, odometry the
+/// controller sends on the link comes out of the returned receiver.
 pub(super) fn start(
     target: &LinkTarget,
     baud: u32,
     config: &Config,
     notifier: Notifier,
     counters: &Arc<Counters>,
-) -> Result<(Sender<LinkMsg>, thread::JoinHandle<LinkReport>), Error> {
+) -> Result<Started, Error> {
     let (link_tx, link_rx) = bounded::<LinkMsg>(LINK_QUEUE);
+    let (odometry_tx, odometry_rx) = bounded::<OdometryIn>(ODOMETRY_QUEUE);
     let link = LinkThread {
         link: Resilient::new(target.clone(), baud),
         rx: link_rx,
+        odometry_tx,
         notifier,
         counters: Arc::clone(counters),
         heartbeat: Duration::from_millis(config.service.heartbeat_ms),
@@ -53,7 +69,11 @@ pub(super) fn start(
         .name("link".into())
         .spawn(move || link.run())
         .map_err(|e| Error::Setup(format!("cannot start the link thread: {e}")))?;
-    Ok((link_tx, handle))
+    Ok(Started {
+        link_tx,
+        odometry_rx,
+        handle,
+    })
 }
 
 /// Per-stage latencies over one metrics interval.
@@ -82,6 +102,7 @@ pub(super) struct LinkReport {
 struct LinkThread {
     link: Resilient,
     rx: Receiver<LinkMsg>,
+    odometry_tx: Sender<OdometryIn>,
     notifier: Notifier,
     counters: Arc<Counters>,
     heartbeat: Duration,
@@ -138,6 +159,7 @@ impl LinkThread {
                     break;
                 }
             }
+            self.receive_odometry();
             let now = Instant::now();
             if now >= t.next_stats {
                 self.stats(&mut t, now);
@@ -195,6 +217,16 @@ impl LinkThread {
         }
     }
 
+    /// Pass on the odometry that arrived on the link (the oldest is dropped when the
+    /// analysis stage is behind: it only needs the latest).
+    fn receive_odometry(&mut self) {
+        let (tx, counters) = (&self.odometry_tx, &self.counters);
+        self.link.receive_odometry(&mut |o| {
+            super::bump(&counters.odometry_in);
+            let _ = tx.try_send((o, Instant::now()));
+        });
+    }
+
     /// The last verdict and a stopping heartbeat, flushed.
     fn send_last(&mut self, t: &mut Tick, verdict: &proto::Verdict) {
         self.notifier.notify(b"STOPPING=1\nSTATUS=stopping");
@@ -250,6 +282,7 @@ impl LinkThread {
         proto::Heartbeat {
             state,
             camera_ok: self.counters.flowing.load(Ordering::Relaxed),
+            memory_fused: self.counters.memory_fused.load(Ordering::Relaxed),
             frame_rate_chz: rate_chz,
             dropped: get(&self.counters.dropped).min(u64::from(u16::MAX)) as u16,
             seq,

@@ -135,6 +135,10 @@ struct Counters {
     camera_reopens: AtomicU64,
     /// Whether frames are arriving (cleared by the analysis stage on a timeout).
     flowing: AtomicBool,
+    /// Whether the last verdict was fused with the terrain memory.
+    memory_fused: AtomicBool,
+    /// Odometry messages received from the controller.
+    odometry_in: AtomicU64,
 }
 
 fn bump(c: &AtomicU64) -> u64 {
@@ -162,14 +166,17 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
         config.camera.height,
         config.service.pool_frames
     );
-    let (link_tx, link_handle) =
-        link::start(&options.link, options.baud, config, notifier, &counters)?;
+    let link::Started {
+        link_tx,
+        odometry_rx,
+        handle: link_handle,
+    } = link::start(&options.link, options.baud, config, notifier, &counters)?;
     let mut stage = analysis::Stage::new(
         pipeline,
         config,
         options.frames,
         Arc::clone(&counters),
-        link_tx,
+        (link_tx, odometry_rx),
         camera.free_tx.clone(),
     );
     let reason = stage.run(&camera.ready_rx, &shutdown);
