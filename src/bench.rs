@@ -1,8 +1,11 @@
 //! The `bench` subcommand: the whole pipeline many times on one frame, per-stage
-//! median and 99th percentile. (Criterion benches live in `benches/`.)
+//! median and 99th percentile. The rover is taken to drive 3 cm and turn 0.5° between
+//! frames, so the terrain memory (when enabled) moves and fuses its map every frame as
+//! it does on a drive. (Criterion benches live in `benches/`.)
 
 use rover_terrain_drivers::DepthFrame;
 
+use crate::memory::Motion;
 use crate::verdict::StageTimes;
 use crate::{Error, Pipeline};
 
@@ -23,13 +26,19 @@ pub fn run(
     frame: &DepthFrame,
     iterations: usize,
 ) -> Result<serde_json::Value, Error> {
+    let motion = Motion {
+        forward_m: 0.03,
+        lateral_m: 0.0,
+        dheading_rad: 0.5f32.to_radians(),
+        dt_s: 1.0 / 30.0,
+    };
     for _ in 0..WARMUP {
-        pipeline.process(frame)?;
+        pipeline.process_moved(frame, Ok(motion))?;
     }
     let mut times: Vec<StageTimes> = Vec::with_capacity(iterations);
     let (mut points_in, mut voxels) = (0, 0);
     for _ in 0..iterations {
-        let v = pipeline.process(frame)?;
+        let v = pipeline.process_moved(frame, Ok(motion))?;
         times.push(v.timing_us);
         points_in = v.points_in;
         voxels = v.voxels;
@@ -49,6 +58,7 @@ pub fn run(
             "voxels": stage(|t| t.voxels),
             "crossing": stage(|t| t.crossing),
             "feature": stage(|t| t.feature),
+            "memory": stage(|t| t.memory),
             "total": stage(|t| t.total),
         }
     }))

@@ -81,7 +81,7 @@ fn analyze_without_input_runs_the_bundled_fixtures() {
         assert!(["go", "stop", "unknown"].contains(&verdict));
         assert_eq!(v["traversable"], verdict == "go");
         assert_eq!(v["workcase"].is_null(), verdict != "go");
-        for stage in ["bin", "voxels", "crossing", "feature", "total"] {
+        for stage in ["bin", "voxels", "crossing", "feature", "memory", "total"] {
             assert!(v["timing_us"][stage].as_f64().is_some(), "{stage}");
         }
     }
@@ -342,7 +342,7 @@ fn bench_prints_one_json_line_with_every_stage() {
     assert_eq!(v["iterations"], 5);
     assert!(v["points_in"].as_u64().unwrap() > 200_000);
     assert!(v["voxels"].as_u64().unwrap() > 1000);
-    for stage in ["bin", "voxels", "crossing", "feature", "total"] {
+    for stage in ["bin", "voxels", "crossing", "feature", "memory", "total"] {
         let s = &v["us"][stage];
         assert!(
             s["median"].as_f64().unwrap() <= s["p99"].as_f64().unwrap(),

@@ -278,3 +278,134 @@ fn with_the_memory_off_the_verdicts_are_the_single_frames() {
         );
     }
 }
+
+/// The binary, run from the repository.
+fn bin() -> std::process::Command {
+    let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_rover-terrain"));
+    c.current_dir(env!("CARGO_MANIFEST_DIR"));
+    c
+}
+
+#[test]
+fn a_recorded_drive_with_its_odometry_replays_with_the_memory() {
+    use rover_terrain::sim::drive::{render_drive, write_recording, Step};
+    let config = Config::default();
+    let steps = [Step {
+        forward_m: STEP,
+        turn_rad: 0.0,
+    }; 24];
+    let drive = render_drive(&block_ahead(), &config, &steps, 1.0, 10.0);
+    let dir = tempfile::tempdir().unwrap();
+    write_recording(dir.path(), &drive).unwrap();
+
+    // analyze replays the frames with odometry.txt: every frame after the first is
+    // fused, and the block's step keeps falling by the step into the blind zone.
+    let out = bin().arg("analyze").arg(dir.path()).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines: Vec<serde_json::Value> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 25);
+    let step_left = |v: &serde_json::Value| {
+        v["hazards"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|h| h["kind"] == "step" && h["side"] == "left")
+            .map(|h| h["distance_m"].as_f64().unwrap())
+    };
+    let d0 = step_left(&lines[0]).unwrap();
+    for (k, v) in lines.iter().enumerate() {
+        let state = if k == 0 { "single_frame" } else { "fused" };
+        assert_eq!(v["memory"]["state"], state, "frame {k}");
+        let want = d0 - k as f64 * STEP;
+        let got = step_left(v).unwrap_or_else(|| panic!("frame {k}: lost"));
+        assert!(
+            (got - want).abs() <= 0.02,
+            "frame {k}: {got}, expected {want}"
+        );
+    }
+
+    // run on the same recording: heartbeats say the memory is fused.
+    let out = bin()
+        .args(["run", "--link", "stdout", "--camera"])
+        .arg(format!("fake:{}", dir.path().display()))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let fused = text
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .filter(|v| v["type"] == "heartbeat" && v["memory_fused"] == true)
+        .count();
+    assert!(fused > 0, "{text}");
+}
+
+#[test]
+fn record_keeps_a_drive_s_odometry_and_takes_the_controller_s_from_a_link() {
+    use rover_terrain::link::proto::serial::{encode, Message};
+    use rover_terrain::link::proto::Odometry;
+    use rover_terrain::sim::drive::{render_drive, write_recording, Step};
+    use rover_terrain_drivers::odometry_file;
+    let config = Config::default();
+    let steps = [Step {
+        forward_m: 0.04,
+        turn_rad: 0.01,
+    }; 3];
+    let drive = render_drive(&Terrain::flat(), &config, &steps, 1.0, 10.0);
+    let src = tempfile::tempdir().unwrap();
+    write_recording(src.path(), &drive).unwrap();
+    // Re-recorded into a session: each depth frame keeps its odometry.
+    let out = tempfile::tempdir().unwrap();
+    let session = out.path().join("s");
+    let o = bin()
+        .args(["record", "--frames", "4", "--camera"])
+        .arg(format!("fake:{}", src.path().display()))
+        .arg("--out")
+        .arg(&session)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let kept = odometry_file::read(&session).unwrap();
+    let mut got: Vec<(String, [u8; 8])> = kept.into_iter().collect();
+    got.sort();
+    let want: Vec<[u8; 8]> = drive.iter().map(|(_, _, o)| o.encode()).collect();
+    assert_eq!(got.iter().map(|g| g.1).collect::<Vec<_>>(), want);
+    assert!(got
+        .iter()
+        .all(|(name, _)| name.starts_with("d-") && session.join(name).is_file()));
+
+    // With --odometry-link, the controller's messages on a pty are recorded instead.
+    let (mut master, slave) = serialport::TTYPort::pair().unwrap();
+    use std::io::Write;
+    let sent = Odometry::from_pose(9, 1234, 2.5, 0.0, 1.0);
+    master.write_all(&encode(&Message::Odometry(sent))).unwrap();
+    let session = out.path().join("t");
+    let o = bin()
+        .args(["record", "--frames", "2", "--camera"])
+        .arg(format!("fake:{}", src.path().display()))
+        .arg("--out")
+        .arg(&session)
+        .args([
+            "--odometry-link",
+            &format!("serial:{}", serialport::SerialPort::name(&slave).unwrap()),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let kept = odometry_file::read(&session).unwrap();
+    assert_eq!(kept.len(), 2);
+    assert!(kept.values().all(|b| *b == sent.encode()), "{kept:?}");
+    drop(slave);
+}

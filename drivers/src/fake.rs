@@ -57,6 +57,8 @@ pub struct FakeCamera {
     stalled: u64,
     started: Option<(std::time::Instant, f64)>,
     cache: Option<Vec<Cached>>,
+    /// Each frame's recorded odometry (`odometry.txt` beside the frames).
+    odometry: Vec<Option<[u8; 8]>>,
 }
 
 /// A frame decoded ahead of time by [`FakeCamera::preload`]: its pixels, or what was
@@ -112,6 +114,20 @@ impl FakeCamera {
                 path: path.to_path_buf(),
             });
         };
+        let odometry = if path.is_dir() {
+            let recorded = crate::odometry_file::read(path)?;
+            let name = |p: &Path| p.file_name().map(|n| n.to_string_lossy().into_owned());
+            let files: Vec<Option<String>> = match &source {
+                Source::Images(v) => v.iter().map(|p| name(p)).collect(),
+                Source::Session(s) => s.depth_entries().iter().map(|e| name(&e.path)).collect(),
+            };
+            files
+                .iter()
+                .map(|f| f.as_ref().and_then(|f| recorded.get(f).copied()))
+                .collect()
+        } else {
+            Vec::new()
+        };
         Ok(FakeCamera {
             source,
             label: format!("fake:{}", path.display()),
@@ -126,6 +142,7 @@ impl FakeCamera {
             stalled: 0,
             started: None,
             cache: None,
+            odometry,
         })
     }
 
@@ -286,6 +303,7 @@ impl DepthCamera for FakeCamera {
         self.next += 1;
         self.last = Some(i);
         self.wait_for(i);
+        frame.odometry = self.odometry.get(i).copied().flatten();
         if let Some(cache) = &self.cache {
             match &cache[i] {
                 Cached::Frame(f) => {

@@ -569,13 +569,14 @@ impl SessionWriter {
         std::fs::write(&index, &self.index).map_err(|e| DriverError::io(&index, e))
     }
 
-    /// Append one depth frame (millimetres) with its arrival time and timestamp.
+    /// Append one depth frame (millimetres) with its arrival time and timestamp;
+    /// returns the frame file's name.
     pub fn write_depth(
         &mut self,
         frame: &DepthFrame,
         time_s: f64,
         timestamp: u32,
-    ) -> Result<(), DriverError> {
+    ) -> Result<String, DriverError> {
         let name = format!("d-{time_s:.6}-{timestamp}.pgm");
         let mut bytes = format!("P5 {} {} 65535\n", frame.width(), frame.height()).into_bytes();
         for &mm in frame.pixels() {
@@ -584,7 +585,22 @@ impl SessionWriter {
         }
         let path = self.dir.join(&name);
         std::fs::write(&path, bytes).map_err(|e| DriverError::io(&path, e))?;
-        self.append(&name)
+        self.append(&name)?;
+        Ok(name)
+    }
+
+    /// Record the controller's odometry (PROTOCOL.md's 8 bytes) with the depth frame
+    /// file `frame_file`, in the session's `odometry.txt`.
+    pub fn write_odometry(&mut self, frame_file: &str, bytes: &[u8; 8]) -> Result<(), DriverError> {
+        use std::io::Write;
+        let path = self.dir.join(crate::odometry_file::FILE_NAME);
+        let mut f = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(&path)
+            .map_err(|e| DriverError::io(&path, e))?;
+        f.write_all(crate::odometry_file::line(frame_file, bytes).as_bytes())
+            .map_err(|e| DriverError::io(&path, e))
     }
 }
 

@@ -18,6 +18,10 @@ pub struct DepthFrame {
     /// Capture time in seconds, in the source's own clock (a recording's timestamps,
     /// or seconds since the source started).
     pub timestamp_s: f64,
+    /// The motor controller's odometry message recorded with this frame (the 8
+    /// bytes of PROTOCOL.md's odometry layout), for replayed drives; `None` from live
+    /// cameras and from recordings without odometry.
+    pub odometry: Option<[u8; 8]>,
 }
 
 impl DepthFrame {
@@ -29,6 +33,7 @@ impl DepthFrame {
             depth_mm: Vec::with_capacity(width.min(MAX_WIDTH) * height.min(MAX_HEIGHT)),
             seq: 0,
             timestamp_s: 0.0,
+            odometry: None,
         }
     }
 
@@ -48,6 +53,7 @@ impl DepthFrame {
             depth_mm,
             seq: 0,
             timestamp_s: 0.0,
+            odometry: None,
         }
     }
 

@@ -16,6 +16,7 @@ mod frame;
 pub mod freenect;
 pub mod image;
 mod nodes;
+pub mod odometry_file;
 mod source;
 #[cfg(feature = "v4l")]
 pub mod v4l;

@@ -4,6 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
+use rover_terrain::link::proto;
 use rover_terrain::{Config, Pipeline, Verdict};
 use rover_terrain_drivers::{CameraSpec, DepthFrame, FrameStatus};
 
@@ -51,6 +52,12 @@ pub fn for_each_verdict(
         .mount
         .auto_level
         .then(rover_terrain::level::Leveler::new);
+    // A recorded drive's odometry (odometry.txt beside its frames) moves the terrain
+    // memory between its frames, on the recording's own clock.
+    let mut tracker = config
+        .memory
+        .enabled
+        .then(|| rover_terrain::memory::odometry::Tracker::new(&config.memory));
     let mut pipeline = Pipeline::new(config)?;
     let mut frame = DepthFrame::with_capacity(w, h);
     let mut failed = false;
@@ -90,7 +97,19 @@ pub fn for_each_verdict(
             }
             frame.seq = index;
             index += 1;
-            match pipeline.process(&frame) {
+            let motion = match tracker.as_mut() {
+                Some(t) => {
+                    if let Some(o) = frame
+                        .odometry
+                        .and_then(|b| proto::Odometry::decode(&b).ok())
+                    {
+                        t.on_odometry(o, frame.timestamp_s);
+                    }
+                    t.motion(frame.timestamp_s)
+                }
+                None => Err(rover_terrain::memory::odometry::Untrusted::NoOdometry),
+            };
+            match pipeline.process_moved(&frame, motion) {
                 Ok(_) => on_verdict(&Analysed {
                     verdict: pipeline.verdict(),
                     source: camera.last_source(),

@@ -1,6 +1,8 @@
 //! `record`: a camera into a libfreenect fakenect session.
 
 use std::path::PathBuf;
+
+use anyhow::Context;
 use std::process::ExitCode;
 
 use rover_terrain_drivers::fakenect::{Registration, Session, SessionWriter};
@@ -21,6 +23,14 @@ pub struct Args {
     /// Stop after this many seconds.
     #[arg(long)]
     seconds: Option<f64>,
+    /// Listen on this link (serial:PATH, slcan:PATH, can:IFACE) for the controller's
+    /// odometry and record the latest message with each frame (odometry.txt). A
+    /// replayed drive's own odometry is kept without it.
+    #[arg(long)]
+    odometry_link: Option<rover_terrain::link::LinkTarget>,
+    /// Serial speed for --odometry-link.
+    #[arg(long, default_value_t = rover_terrain::link::DEFAULT_BAUD)]
+    baud: u32,
 }
 
 /// Record the camera into a fakenect session.
@@ -30,6 +40,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         out,
         frames,
         seconds,
+        odometry_link,
+        baud,
     } = args;
     let (camera, out) = (&camera, out.as_path());
     anyhow::ensure!(
@@ -47,6 +59,14 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     .unwrap_or(Registration::LIBFREENECT_DEFAULT);
     let mut cam = rover_terrain_drivers::open(camera)?;
     let mut writer = SessionWriter::create(out, Some(registration))?;
+    let mut link = match &odometry_link {
+        Some(target) => Some(
+            rover_terrain::link::open(target, baud)
+                .with_context(|| format!("--odometry-link {target}"))?,
+        ),
+        None => None,
+    };
+    let mut odometry: Option<[u8; 8]> = None;
     let mut frame = DepthFrame::default();
     let mut colour = rover_terrain_drivers::ColourFrame::default();
     let start = std::time::Instant::now();
@@ -67,7 +87,14 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             CameraSpec::Fake(_) => frame.timestamp_s,
             _ => wall0 + start.elapsed().as_secs_f64(),
         };
-        writer.write_depth(&frame, t, n as u32)?;
+        let name = writer.write_depth(&frame, t, n as u32)?;
+        if let Some(l) = link.as_mut() {
+            l.receive_odometry(&mut |o| odometry = Some(o.encode()))
+                .context("reading odometry")?;
+        }
+        if let Some(bytes) = odometry.or(frame.odometry) {
+            writer.write_odometry(&name, &bytes)?;
+        }
         // The colour frame that came with it, if the camera has colour.
         if cam.next_colour(&mut colour)? {
             writer.write_colour(&colour, t, n as u32)?;

@@ -117,6 +117,16 @@ impl Stage {
         }
         let t0 = Instant::now();
         let queued = t0 - slot.arrived;
+        // A replayed drive carries the odometry recorded with each frame.
+        if let Some((tracker, bytes)) = self.tracker.as_mut().zip(slot.frame.odometry) {
+            if let Ok(o) = proto::Odometry::decode(&bytes) {
+                let at = slot
+                    .arrived
+                    .saturating_duration_since(self.start)
+                    .as_secs_f64();
+                tracker.on_odometry(o, at);
+            }
+        }
         let motion = self.motion(t0);
         let outcome = self
             .pipeline
