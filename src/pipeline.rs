@@ -116,6 +116,15 @@ impl Pipeline {
         &self.projector
     }
 
+    /// The ground cells the last frame was analysed on: the terrain memory's fused
+    /// cells when it is enabled, else the grid's.
+    pub fn analysed_cells(&self) -> &[crate::grid::Cell] {
+        match &self.memory {
+            Some(m) => m.cells(),
+            None => self.grid.cells(),
+        }
+    }
+
     /// The terrain memory, when enabled.
     pub fn memory(&self) -> Option<&TerrainMemory> {
         self.memory.as_ref()

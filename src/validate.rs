@@ -620,3 +620,136 @@ pub fn families_report(results: &[FamilyResult], per_family: usize, seed: u64) -
 pub const FAMILY_SCENES: usize = 2;
 /// Seed of the report's family sweep.
 pub const FAMILY_SEED: u64 = 12;
+
+/// Errors of one way of analysing a drive: mean and largest |error| of the distance,
+/// metres, and of the gradient, degrees, over the frames that measured them.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct DriveErrors {
+    /// Mean |Δ distance|, metres.
+    pub distance_mean: f64,
+    /// Largest |Δ distance|, metres.
+    pub distance_max: f64,
+    /// Mean |Δ gradient|, degrees.
+    pub gradient_mean: f64,
+    /// Largest |Δ gradient|, degrees.
+    pub gradient_max: f64,
+    /// Frames with a feature measured.
+    pub measured: usize,
+}
+
+/// The noisy drive of [`run_memory_drive`]: single frames against the terrain memory.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DriveComparison {
+    /// Frames in the drive.
+    pub frames: usize,
+    /// Each frame on its own.
+    pub single: DriveErrors,
+    /// Frames fused over the odometry.
+    pub fused: DriveErrors,
+}
+
+/// Toe of the ramp of [`run_memory_drive`] at the start, metres; its gradient, °.
+pub const DRIVE_RAMP: (f64, f64) = (1.6, 20.0);
+
+/// A 20-frame drive with Kinect v1 noise toward a full-width 20° ramp (toe 1.6 m out,
+/// 3 cm per frame), analysed frame by frame and with the terrain memory over exact
+/// odometry; the toe distance and gradient errors of both.
+pub fn run_memory_drive(seed: u64) -> Result<DriveComparison, Error> {
+    use crate::memory::Motion;
+    use crate::sim::drive::{render_drive, Step};
+    use crate::sim::{Element, Extent, KinectNoise, Terrain};
+    let config = Config::default();
+    let (toe, gradient) = DRIVE_RAMP;
+    let terrain = Terrain::new(vec![Element::ramp(toe, 0.0, gradient, 0.0, Extent::Full)]);
+    let step = 0.03;
+    let steps = [Step {
+        forward_m: step,
+        turn_rad: 0.0,
+    }; 19];
+    let drive = render_drive(&terrain, &config, &steps, 1.0, 10.0);
+    let mut single = Pipeline::new(config.clone())?;
+    let mut fused = Pipeline::new(config.clone())?;
+    let (mut e_single, mut e_fused) = (Vec::new(), Vec::new());
+    for (k, (frame, pose, _)) in drive.iter().enumerate() {
+        let mut f = frame.clone();
+        KinectNoise {
+            seed: seed * 1000 + k as u64,
+            ..Default::default()
+        }
+        .apply(&mut f, config.camera.hfov_deg);
+        let motion = Motion {
+            forward_m: step as f32,
+            dt_s: 0.1,
+            ..Motion::default()
+        };
+        let truth = toe - pose.x;
+        let err = |v: &Verdict| {
+            let f = v.feature?;
+            let d = f64::from(f.distance_m?) - truth;
+            let g = f64::from(f.gradient_deg?) - gradient;
+            Some((d.abs(), g.abs()))
+        };
+        e_single.extend(err(single.process(&f)?));
+        let m = if k == 0 {
+            Err(crate::memory::odometry::Untrusted::NoOdometry)
+        } else {
+            Ok(motion)
+        };
+        e_fused.extend(err(fused.process_moved(&f, m)?));
+    }
+    let summary = |e: &[(f64, f64)]| {
+        let n = e.len().max(1) as f64;
+        DriveErrors {
+            distance_mean: e.iter().map(|x| x.0).sum::<f64>() / n,
+            distance_max: e.iter().map(|x| x.0).fold(0.0, f64::max),
+            gradient_mean: e.iter().map(|x| x.1).sum::<f64>() / n,
+            gradient_max: e.iter().map(|x| x.1).fold(0.0, f64::max),
+            measured: e.len(),
+        }
+    };
+    Ok(DriveComparison {
+        frames: drive.len(),
+        single: summary(&e_single),
+        fused: summary(&e_fused),
+    })
+}
+
+/// [`run_memory_drive`] as a Markdown section.
+pub fn memory_drive_report(c: &DriveComparison, seed: u64) -> String {
+    let mut s = String::new();
+    let (toe, gradient) = DRIVE_RAMP;
+    let _ = writeln!(s, "\n## Terrain memory on a noisy drive\n");
+    let _ = writeln!(
+        s,
+        "A {}-frame drive (`sim::drive`, Kinect v1 noise, seed {seed}) toward a full-width \
+         {gradient}° ramp whose toe starts {toe} m out, 3 cm per frame with exact odometry: each \
+         frame analysed on its own, and fused with the terrain memory.\n",
+        c.frames
+    );
+    let _ = writeln!(
+        s,
+        "| Analysis | Frames measured | Mean Δ distance m | Largest Δ distance m | Mean Δ gradient ° | Largest Δ gradient ° |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|");
+    for (name, e) in [("single frames", c.single), ("terrain memory", c.fused)] {
+        let _ = writeln!(
+            s,
+            "| {name} | {} | {:.4} | {:.4} | {:.3} | {:.3} |",
+            e.measured, e.distance_mean, e.distance_max, e.gradient_mean, e.gradient_max
+        );
+    }
+    let better = c.fused.distance_mean < c.single.distance_mean
+        && c.fused.gradient_mean < c.single.gradient_mean;
+    let _ = writeln!(
+        s,
+        "\n{}",
+        if better {
+            "The terrain memory's averaging lowers both errors."
+        } else {
+            "The terrain memory does not lower the errors here: a single frame's face fit \
+             already averages hundreds of cells, and both stay far inside the noisy bars \
+             (3 cm, 1.5°)."
+        }
+    );
+    s
+}

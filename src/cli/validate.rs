@@ -18,8 +18,8 @@ pub struct Args {
     /// Where to write the Markdown report.
     #[arg(long, default_value = "docs/validation.md")]
     out: PathBuf,
-    /// Random scenes per family and rig kind in the report's family sweep
-    /// (0: none, the fixtures only).
+    /// Random scenes per family and rig kind in the report's family sweep, which
+    /// also runs the terrain memory's noisy drive (0: neither, the fixtures only).
     #[arg(long, default_value_t = validate::FAMILY_SCENES)]
     families: usize,
 }
@@ -32,6 +32,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     if families > 0 {
         let swept = validate::run_families(families, validate::FAMILY_SEED)?;
         report += &validate::families_report(&swept, families, validate::FAMILY_SEED);
+        let drive = validate::run_memory_drive(validate::FAMILY_SEED)?;
+        report += &validate::memory_drive_report(&drive, validate::FAMILY_SEED);
     }
     if let Some(parent) = out.parent().filter(|p| !p.as_os_str().is_empty()) {
         std::fs::create_dir_all(parent)

@@ -57,6 +57,8 @@ pub struct Scene<'a> {
     pub expected: &'a [bool],
     /// The verdict.
     pub verdict: &'a Verdict,
+    /// The terrain memory (how long ago each cell was last seen), when enabled.
+    pub memory: Option<&'a crate::memory::TerrainMemory>,
 }
 
 /// The class of a voxel for colouring.
@@ -87,11 +89,23 @@ impl<'a> Scene<'a> {
         Scene {
             config: pipeline.config(),
             spec: pipeline.grid().spec(),
-            cells: pipeline.grid().cells(),
+            cells: pipeline.analysed_cells(),
             voxels: pipeline.grid().voxels(),
             expected: pipeline.analyzer().expected(),
             verdict,
+            memory: pipeline.memory(),
         }
+    }
+
+    /// For a cell out of the camera's view that the verdict took from the terrain
+    /// memory: the travel since it was last seen, metres.
+    pub fn remembered_travel(&self, ix: usize, iy: usize) -> Option<f32> {
+        let i = self.spec.cell(ix, iy);
+        if self.expected[i] || !self.seen(i) {
+            return None;
+        }
+        let (_, travel) = self.memory?.age_at(ix, iy)?;
+        (travel > 0.0).then_some(travel)
     }
 
     /// Whether cell `i` has enough points to count as seen.

@@ -1,5 +1,7 @@
 //! `topdown.png`: the corridor from above, forward up, the rover's left on the left.
 
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+
 use super::canvas::{rgb, turbo, Canvas, BODY, LARGE, SMALL};
 use super::Scene;
 use crate::grid::GridSpec;
@@ -62,7 +64,18 @@ pub fn draw(scene: &Scene<'_>) -> Canvas {
             if scene.seen(i) {
                 let z = f64::from(scene.cells[i].z);
                 let t = (z - Z_RANGE_M.0) / (Z_RANGE_M.1 - Z_RANGE_M.0);
-                c.fill(x0, y0, cp, cp, turbo(t));
+                let mut colour = turbo(t);
+                // Remembered, out of view: faded toward grey with the travel since it
+                // was seen (fully grey where it would be forgotten), dotted.
+                if let Some(travel) = scene.remembered_travel(ix, iy) {
+                    let max = scene.config.memory.max_travel_m as f32;
+                    let k = 0.3 + 0.6 * (travel / max).clamp(0.0, 1.0);
+                    colour = fade(colour, k);
+                }
+                c.fill(x0, y0, cp, cp, colour);
+                if scene.remembered_travel(ix, iy).is_some() {
+                    c.set(x0 + cp as i32 / 2, y0 + cp as i32 / 2, rgb(40, 40, 40));
+                }
             } else if scene.expected[i] {
                 // Should be seen, is not: hatched.
                 c.fill(x0, y0, cp, cp, rgb(215, 215, 215));
@@ -186,7 +199,9 @@ fn panel(c: &mut Canvas, scene: &Scene<'_>, x: i32) {
     let mut at = Lines { x, y: TOP };
     decision_badge(c, scene.verdict, &mut at);
     verdict_lines(c, scene, &mut at);
-    legend(c, x, at.y + 16);
+    let remembered = (0..scene.spec.nx)
+        .any(|ix| (0..scene.spec.ny).any(|iy| scene.remembered_travel(ix, iy).is_some()));
+    legend(c, x, at.y + 16, remembered);
 }
 
 /// Where the next line of the panel goes.
@@ -308,7 +323,7 @@ fn verdict_lines(c: &mut Canvas, scene: &Scene<'_>, at: &mut Lines) {
 
 /// The colour bar of ground heights and the swatches of what the picture marks,
 /// from `y` down.
-fn legend(c: &mut Canvas, x: i32, mut y: i32) {
+fn legend(c: &mut Canvas, x: i32, mut y: i32, remembered: bool) {
     c.text("ground height", x, y, BODY, rgb(0, 0, 0));
     y += 18;
     let bar_w = 200;
@@ -356,4 +371,28 @@ fn legend(c: &mut Canvas, x: i32, mut y: i32) {
     y += 20;
     c.outline(x, y, 14, 14, rgb(0, 0, 0), 2);
     c.text("wheel tracks", x + 20, y + 1, BODY, rgb(0, 0, 0));
+    if remembered {
+        y += 20;
+        let f = fade(rgb(255, 128, 0), 0.6);
+        swatch(
+            c,
+            y,
+            [f.r(), f.g(), f.b()],
+            false,
+            "remembered, out of view: greyer",
+        );
+        c.text(
+            "the farther driven since seen",
+            x + 20,
+            y + 14,
+            SMALL,
+            rgb(40, 40, 40),
+        );
+    }
+}
+
+/// `colour` faded toward grey by `k` (0: unchanged, 1: grey).
+fn fade(colour: Rgb888, k: f32) -> Rgb888 {
+    let f = |v: u8| (f32::from(v) + k * (150.0 - f32::from(v))).round() as u8;
+    rgb(f(colour.r()), f(colour.g()), f(colour.b()))
 }

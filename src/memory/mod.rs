@@ -43,18 +43,44 @@ impl Motion {
     /// metres: the rover moved by (forward, lateral), then turned by the heading
     /// change.
     pub fn apply(&self, p: [f32; 2]) -> [f32; 2] {
-        let (s, c) = self.dheading_rad.sin_cos();
-        let (dx, dy) = (p[0] - self.forward_m, p[1] - self.lateral_m);
-        [c * dx + s * dy, -s * dx + c * dy]
+        Rigid::of(self).apply(p)
     }
 
     /// The inverse of [`Motion::apply`]: where a point of the later frame was in the
     /// earlier one.
     pub fn unapply(&self, q: [f32; 2]) -> [f32; 2] {
-        let (s, c) = self.dheading_rad.sin_cos();
+        Rigid::of(self).unapply(q)
+    }
+}
+
+/// A motion's rigid transform with its sine and cosine worked out once (the map
+/// moves thousands of points per frame).
+#[derive(Debug, Clone, Copy)]
+struct Rigid {
+    s: f32,
+    c: f32,
+    t: [f32; 2],
+}
+
+impl Rigid {
+    fn of(m: &Motion) -> Self {
+        let (s, c) = m.dheading_rad.sin_cos();
+        Rigid {
+            s,
+            c,
+            t: [m.forward_m, m.lateral_m],
+        }
+    }
+
+    fn apply(&self, p: [f32; 2]) -> [f32; 2] {
+        let (dx, dy) = (p[0] - self.t[0], p[1] - self.t[1]);
+        [self.c * dx + self.s * dy, -self.s * dx + self.c * dy]
+    }
+
+    fn unapply(&self, q: [f32; 2]) -> [f32; 2] {
         [
-            c * q[0] - s * q[1] + self.forward_m,
-            s * q[0] + c * q[1] + self.lateral_m,
+            self.c * q[0] - self.s * q[1] + self.t[0],
+            self.s * q[0] + self.c * q[1] + self.t[1],
         ]
     }
 }
@@ -66,6 +92,8 @@ struct Remembered {
     cell: Cell,
     /// Frames that saw it at a consistent height, in a row.
     frames: u16,
+    /// The points behind the blended statistics (capped: older frames fade).
+    weight: f32,
     /// Travel since it was last seen, metres.
     travel_m: f32,
     /// Time since it was last seen, seconds.
@@ -79,6 +107,7 @@ impl Remembered {
     const EMPTY: Remembered = Remembered {
         cell: Cell::EMPTY,
         frames: 0,
+        weight: 0.0,
         travel_m: 0.0,
         age_s: 0.0,
         copy: false,
@@ -173,6 +202,8 @@ impl TerrainMemory {
     /// Move the map by the rover's motion since the last frame, and age it.
     pub fn advance(&mut self, motion: &Motion) {
         let step = motion.forward_m.hypot(motion.lateral_m);
+        let dt = motion.dt_s;
+        let motion = &Rigid::of(motion);
         self.next.fill(Remembered::EMPTY);
         self.source.fill(usize::MAX);
         self.placed.fill(false);
@@ -183,7 +214,7 @@ impl TerrainMemory {
             if r.is_empty() || r.copy {
                 continue;
             }
-            let moved = moved(&r, motion, step);
+            let moved = moved(&r, motion, step, dt);
             if moved.travel_m > self.max_travel_m || moved.age_s > self.max_age_s {
                 continue;
             }
@@ -208,7 +239,7 @@ impl TerrainMemory {
             if r.is_empty() || r.copy || self.placed[i] {
                 continue;
             }
-            let moved = moved(&r, motion, step);
+            let moved = moved(&r, motion, step, dt);
             if moved.travel_m > self.max_travel_m || moved.age_s > self.max_age_s {
                 continue;
             }
@@ -244,7 +275,7 @@ impl TerrainMemory {
             if r.is_empty() || r.copy {
                 continue;
             }
-            let moved = moved(&r, motion, step);
+            let moved = moved(&r, motion, step, dt);
             let near =
                 (moved.cell.x - centre[0]).abs() <= vs && (moved.cell.y - centre[1]).abs() <= vs;
             if near && moved.travel_m <= self.max_travel_m && moved.age_s <= self.max_age_s {
@@ -289,16 +320,31 @@ impl TerrainMemory {
                     continue;
                 }
                 if seen {
+                    // Frames that agree are averaged, weighted by their points (a
+                    // cell seen from near has more): noise falls as the rover drives
+                    // on. A cell that changed (a face appeared, a rock went) is the
+                    // frame's alone.
+                    let agree = same && (r.cell.top - now.top).abs() <= CONSISTENT_M;
+                    let w_now = now.n as f32;
+                    let w_old = if agree {
+                        r.weight.min(BLEND_FRAMES * w_now)
+                    } else {
+                        0.0
+                    };
+                    let cell = blend(&r.cell, w_old, &now, w_now);
                     let frames = if same { r.frames.saturating_add(1) } else { 1 };
                     *r = Remembered {
-                        cell: now,
+                        cell,
                         frames,
+                        weight: w_old + w_now,
                         travel_m: 0.0,
                         age_s: 0.0,
                         copy: false,
                     };
+                    self.fused[c] = cell;
+                } else {
+                    self.fused[c] = now;
                 }
-                self.fused[c] = now;
             }
         }
         self.remembered = remembered;
@@ -325,16 +371,43 @@ impl TerrainMemory {
     }
 }
 
+/// How many of the current frame's weight the remembered statistics of a cell may
+/// carry when a frame agrees with them: about the last five frames count.
+const BLEND_FRAMES: f32 = 4.0;
+
+/// The weighted mean of two views of one cell (`old` weighing `w_old`, `now` its
+/// points); the point count is the frame's (the analysis's "seen" threshold).
+fn blend(old: &Cell, w_old: f32, now: &Cell, w_now: f32) -> Cell {
+    if w_old <= 0.0 {
+        return *now;
+    }
+    let k = w_old / (w_old + w_now);
+    let mix = |a: f32, b: f32| b + k * (a - b);
+    let mix2 = |a: [f32; 2], b: [f32; 2]| [mix(a[0], b[0]), mix(a[1], b[1])];
+    Cell {
+        n: now.n,
+        x: mix(old.x, now.x),
+        y: mix(old.y, now.y),
+        z: mix(old.z, now.z),
+        top: mix(old.top, now.top),
+        low: mix(old.low, now.low),
+        crest: mix(old.crest, now.crest),
+        foot: mix(old.foot, now.foot),
+        crest_xy: mix2(old.crest_xy, now.crest_xy),
+        foot_xy: mix2(old.foot_xy, now.foot_xy),
+    }
+}
+
 /// A remembered cell moved by `motion` (its points' centroids carried exactly) and
 /// aged by it.
-fn moved(r: &Remembered, motion: &Motion, step: f32) -> Remembered {
+fn moved(r: &Remembered, motion: &Rigid, step: f32, dt: f32) -> Remembered {
     let mut out = *r;
     let c = &mut out.cell;
     [c.x, c.y] = motion.apply([c.x, c.y]);
     c.crest_xy = motion.apply(c.crest_xy);
     c.foot_xy = motion.apply(c.foot_xy);
     out.travel_m += step;
-    out.age_s += motion.dt_s;
+    out.age_s += dt;
     out
 }
 
