@@ -42,10 +42,11 @@ impl Pipeline {
         let spec = GridSpec::from_config(&config);
         let grid = VoxelGrid::new(spec, w * h);
         let analyzer = Analyzer::new(&config, spec, &projector)?;
-        let memory = config
-            .memory
-            .enabled
-            .then(|| TerrainMemory::new(&config, spec));
+        let memory = config.memory.enabled.then(|| {
+            let mut m = TerrainMemory::new(&config, spec);
+            m.set_view(analyzer.expected(), analyzer.regions());
+            m
+        });
         let min_mm = (config.camera.min_range_m * 1000.0)
             .ceil()
             .clamp(1.0, 65535.0) as u16;
@@ -83,6 +84,7 @@ impl Pipeline {
         // The view changed: what was out of view is not what is now.
         if let Some(m) = &mut self.memory {
             m.clear();
+            m.set_view(analyzer.expected(), analyzer.regions());
         }
         self.projector = projector;
         self.analyzer = analyzer;
@@ -193,12 +195,16 @@ impl Pipeline {
                     },
                     reason: motion.err().map(Untrusted::as_str),
                     remembered_cells: remembered,
+                    remembered_hazards: 0,
                 };
                 memory.cells()
             }
         };
         v.timing_us.memory = t2.elapsed().as_secs_f32() * 1e6;
         self.analyzer.analyze(cells, self.grid.cut(), v);
+        if let Some(memory) = &mut self.memory {
+            v.memory.remembered_hazards = memory.carry_hazards(v);
+        }
         v.timing_us.total = t0.elapsed().as_secs_f32() * 1e6;
         Ok(&self.verdict)
     }

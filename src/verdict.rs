@@ -195,6 +195,8 @@ pub struct MemoryUse {
     pub reason: Option<&'static str>,
     /// Ground cells out of the camera's view that came from memory.
     pub remembered_cells: u32,
+    /// Hazards out of the camera's view that came from memory.
+    pub remembered_hazards: u32,
 }
 
 /// The camera attitude a verdict was computed with (diagnostics).
@@ -293,6 +295,7 @@ impl Verdict {
                 "state": self.memory.state,
                 "reason": self.memory.reason,
                 "remembered_cells": self.memory.remembered_cells,
+                "remembered_hazards": self.memory.remembered_hazards,
             },
             "mount": {
                 "pitch_deg": r3(self.mount.pitch_deg),

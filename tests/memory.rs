@@ -201,9 +201,9 @@ fn steps_of_two_to_ten_centimetres_with_turns_keep_the_block_in_place() {
     assert!(steps.len() > 20);
     // Steps that are not whole cells move the edge within the 5 cm grid: a single
     // frame in full view already quantises the step's distance by up to half a cell,
-    // and where the edge leaves the view the frame's cells and the remembered ones
-    // meet: within 4 cm.
-    assert_tracked(&drive(&block_ahead(), &steps, Some(1.0)), |_| 0.04);
+    // where the edge leaves the view the frame's cells and the remembered ones meet,
+    // and a carried hazard turns about its side's centre line: within 4.5 cm.
+    assert_tracked(&drive(&block_ahead(), &steps, Some(1.0)), |_| 0.045);
 }
 
 #[test]
@@ -452,4 +452,76 @@ fn the_pictures_show_what_was_remembered_and_how_long_ago() {
     let png = dir.path().join("topdown.png");
     std::fs::write(&png, rover_terrain::inspect::topdown::draw(&scene).png()).unwrap();
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+}
+
+/// Drive straight at `terrain` in [`STEP`]s, memory and single frames, and the
+/// nearest `kind` hazard on any side per frame.
+fn nearest_hazard_per_frame(
+    terrain: &Terrain,
+    frames: usize,
+    kind: HazardKind,
+) -> (Vec<Option<f32>>, Vec<Option<f32>>) {
+    let steps = vec![(STEP, 0.0); frames - 1];
+    let of = |run: Vec<(Pose, Verdict)>| -> Vec<Option<f32>> {
+        run.iter()
+            .map(|(_, v)| {
+                v.hazards
+                    .iter()
+                    .filter(|h| h.kind == kind)
+                    .map(|h| h.distance_m)
+                    .reduce(f32::min)
+            })
+            .collect()
+    };
+    (
+        of(drive(terrain, &steps, Some(1.0))),
+        of(drive(terrain, &steps, None)),
+    )
+}
+
+#[test]
+fn a_drop_off_is_kept_down_to_the_wheels() {
+    // The ground beyond the edge is never seen: nothing in the map finds the edge once
+    // it is in the blind zone, so the drop-off itself is carried.
+    let edge = 1.415;
+    let terrain = Terrain::new(vec![Element::DropOff {
+        x_m: edge,
+        depth_m: 0.6,
+    }]);
+    let (fused, single) = nearest_hazard_per_frame(&terrain, 27, HazardKind::DropOff);
+    let d0 = f64::from(fused[0].expect("a drop-off ahead"));
+    for (k, d) in fused.iter().enumerate() {
+        let want = d0 - k as f64 * STEP;
+        let got = f64::from(
+            d.unwrap_or_else(|| panic!("frame {k}: the drop-off is lost at {want:.2} m")),
+        );
+        assert!(
+            (got - want).abs() <= 0.02,
+            "frame {k}: {got:.3}, expected {want:.3}"
+        );
+    }
+    assert!(single.iter().any(Option::is_none), "single frames keep it?");
+}
+
+#[test]
+fn a_ramp_toe_keeps_its_distance_into_the_blind_zone() {
+    // A 20° ramp under the whole corridor, toe 1.2 m out: go, workcase 2, the toe's
+    // distance falling with the travel as the toe passes out of view.
+    let toe = 1.215;
+    let terrain = Terrain::new(vec![Element::ramp(toe, 0.0, 20.0, 0.0, Extent::Full)]);
+    let steps = [(STEP, 0.0); 18];
+    for (k, (pose, v)) in drive(&terrain, &steps, Some(1.0)).iter().enumerate() {
+        let f = v
+            .feature
+            .unwrap_or_else(|| panic!("frame {k}: {:?}", v.hazards));
+        assert_eq!(f.workcase, 2, "frame {k}");
+        let got = f64::from(f.distance_m.unwrap());
+        let want = toe - pose.x;
+        assert!(
+            (got - want).abs() <= 0.02,
+            "frame {k}: {got:.3}, expected {want:.3}"
+        );
+        let g = f64::from(f.gradient_deg.unwrap());
+        assert!((g - 20.0).abs() <= 0.5, "frame {k}: gradient {g}");
+    }
 }

@@ -21,9 +21,11 @@
 
 pub mod odometry;
 
+use crate::analysis::Region;
 use crate::config::Config;
 use crate::grid::{Cell, GridSpec};
 pub use crate::verdict::MemoryState;
+use crate::verdict::{Decision, Hazard, HazardKind, Side, Verdict, MAX_HAZARDS};
 
 /// The rover's motion between two frames, in the earlier frame's rover coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -118,6 +120,25 @@ impl Remembered {
     }
 }
 
+/// A hazard a verdict reported, carried with the rover's motion so that it is still
+/// reported once it is out of the camera's view (a drop-off's edge, whose far side
+/// was never seen, leaves no cells to find it from).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct CarriedHazard {
+    kind: HazardKind,
+    side: Side,
+    /// Where it is, rover frame, metres (x: its distance; y: its side's centre).
+    at: [f32; 2],
+    /// Consecutive verdicts that reported it there.
+    frames: u16,
+    travel_m: f32,
+    age_s: f32,
+}
+
+/// A hazard in a new verdict within this of a carried one (same kind and side) is the
+/// same hazard, metres.
+const SAME_HAZARD_M: f32 = 0.15;
+
 /// Heights of one cell in two frames within this of each other count as the same
 /// ground, metres: a frame that disagrees starts the cell's count again.
 const CONSISTENT_M: f32 = 0.04;
@@ -138,6 +159,12 @@ pub struct TerrainMemory {
     /// Whether each map cell's content landed in `next`.
     placed: Vec<bool>,
     fused: Vec<Cell>,
+    hazards: heapless::Vec<CarriedHazard, MAX_HAZARDS>,
+    /// Where the camera's whole-cell view starts on the left track, the belly band
+    /// and the right track, metres (nearer is out of view).
+    view_start: [f32; 3],
+    /// Lateral centre of each side, metres.
+    side_y: [f32; 3],
     min_points: u32,
     min_frames: u16,
     max_travel_m: f32,
@@ -167,6 +194,13 @@ impl TerrainMemory {
             source: vec![usize::MAX; nx * ny],
             placed: vec![false; nx * ny],
             fused: vec![Cell::EMPTY; spec.cell_count()],
+            hazards: heapless::Vec::new(),
+            view_start: [0.0; 3],
+            side_y: {
+                let mid =
+                    (0.5 * (config.rover.belly_half_width_m + config.rover.track_outer_m)) as f32;
+                [mid, 0.0, -mid]
+            },
             min_points: config.analysis.min_points_per_cell,
             min_frames: m.min_frames.min(u32::from(u16::MAX)) as u16,
             max_travel_m: m.max_travel_m as f32,
@@ -178,6 +212,21 @@ impl TerrainMemory {
     /// Forget everything (odometry lost: the map can no longer be placed).
     pub fn clear(&mut self) {
         self.map.fill(Remembered::EMPTY);
+        self.hazards.clear();
+    }
+
+    /// Learn where the camera's view starts on each side: the nearest cell it sees
+    /// whole (`expected`) in each region's strips (`regions`, one per strip).
+    pub fn set_view(&mut self, expected: &[bool], regions: &[Region]) {
+        let s = self.spec;
+        let mut start = [f32::INFINITY; 3];
+        for iy in 0..s.ny {
+            let k = side_index(regions[iy].side());
+            if let Some(ix) = (0..s.nx).find(|&ix| expected[s.cell(ix, iy)]) {
+                start[k] = start[k].min(s.origin[0] + ix as f32 * s.voxel_m);
+            }
+        }
+        self.view_start = start;
     }
 
     /// The map cell (mx, my) containing the point (x, y), rover frame, metres.
@@ -286,6 +335,62 @@ impl TerrainMemory {
             }
         }
         std::mem::swap(&mut self.map, &mut self.next);
+        // Carried hazards move too; one under or behind the front axle is passed.
+        let (max_travel, max_age) = (self.max_travel_m, self.max_age_s);
+        for h in self.hazards.iter_mut() {
+            h.at = motion.apply(h.at);
+            h.travel_m += step;
+            h.age_s += dt;
+        }
+        self.hazards
+            .retain(|h| h.at[0] >= 0.0 && h.travel_m <= max_travel && h.age_s <= max_age);
+    }
+
+    /// After the analysis of the fused cells: report the carried hazards that are out
+    /// of the camera's view now (seen by `min_frames` verdicts alike), re-deciding the
+    /// verdict when one is added; then carry on what the verdict reports. A hazard in
+    /// view is the frame's to find: one it no longer finds is dropped. Returns how many
+    /// hazards came from memory.
+    pub fn carry_hazards(&mut self, verdict: &mut Verdict) -> u32 {
+        let mut added = 0u32;
+        for h in &self.hazards {
+            let out_of_view = h.at[0] < self.view_start[side_index(h.side)];
+            if out_of_view && h.frames >= self.min_frames {
+                verdict.add_hazard(Hazard {
+                    kind: h.kind,
+                    side: h.side,
+                    distance_m: h.at[0],
+                });
+                added += 1;
+            }
+        }
+        if added > 0 {
+            redecide(verdict);
+        }
+        let old = self.hazards.clone();
+        self.hazards.clear();
+        for h in &verdict.hazards {
+            let k = side_index(h.side);
+            let prev = old.iter().find(|c| {
+                c.kind == h.kind
+                    && c.side == h.side
+                    && (c.at[0] - h.distance_m).abs() <= SAME_HAZARD_M
+            });
+            let carried = match prev {
+                // Out of view: the carried one itself, where the motion put it.
+                Some(p) if h.distance_m < self.view_start[k] => *p,
+                _ => CarriedHazard {
+                    kind: h.kind,
+                    side: h.side,
+                    at: [h.distance_m, self.side_y[k]],
+                    frames: prev.map_or(1, |p| p.frames.saturating_add(1)),
+                    travel_m: 0.0,
+                    age_s: 0.0,
+                },
+            };
+            let _ = self.hazards.push(carried);
+        }
+        added
     }
 
     /// Fuse a frame's cells into the map and build the cells the analysis sees:
@@ -369,6 +474,33 @@ impl TerrainMemory {
             .get((ix + self.behind) * self.ny + iy + self.side)?;
         (!r.is_empty()).then_some((r.age_s, r.travel_m))
     }
+}
+
+fn side_index(s: Side) -> usize {
+    match s {
+        Side::Left => 0,
+        Side::Centre => 1,
+        Side::Right => 2,
+    }
+}
+
+/// The decision again after hazards were added: stop for any but unknown ground,
+/// unknown for unknown ground; a go loses its feature. Hazards nearest first.
+fn redecide(v: &mut Verdict) {
+    v.hazards
+        .sort_unstable_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
+    let stop = v.hazards.iter().any(|h| h.kind != HazardKind::Unknown);
+    let decision = if stop {
+        Decision::Stop
+    } else if !v.hazards.is_empty() {
+        Decision::Unknown
+    } else {
+        v.decision
+    };
+    if decision != Decision::Go {
+        v.feature = None;
+    }
+    v.decision = decision;
 }
 
 /// How many of the current frame's weight the remembered statistics of a cell may
@@ -586,6 +718,71 @@ mod tests {
         let empty = vec![Cell::EMPTY; spec.cell_count()];
         assert_eq!(m.fuse(&empty, &view), 0);
         assert!(m.cells().iter().all(|c| c.n == 0));
+    }
+
+    #[test]
+    fn hazards_are_carried_out_of_view_once_seen_twice_and_never_behind() {
+        let (cfg, spec) = setup();
+        let mut m = TerrainMemory::new(&cfg, spec);
+        let regions: Vec<Region> = (0..spec.ny)
+            .map(|iy| {
+                let y = spec.y_centre(iy);
+                if y >= 0.2 {
+                    Region::Left
+                } else if y <= -0.2 {
+                    Region::Right
+                } else {
+                    Region::Belly
+                }
+            })
+            .collect();
+        // The view starts at 0.6 m everywhere.
+        let expected: Vec<bool> = (0..spec.cell_count())
+            .map(|c| spec.x_centre(c / spec.ny) > 0.6)
+            .collect();
+        m.set_view(&expected, &regions);
+        let drop = |d: f32| Hazard {
+            kind: HazardKind::DropOff,
+            side: Side::Left,
+            distance_m: d,
+        };
+        let step = Motion {
+            forward_m: 0.1,
+            dt_s: 0.1,
+            ..Motion::default()
+        };
+        let frame = |m: &mut TerrainMemory, seen: Option<f32>| {
+            let mut v = Verdict {
+                decision: Decision::Go,
+                ..Verdict::default()
+            };
+            if let Some(d) = seen {
+                v.add_hazard(drop(d));
+                v.decision = Decision::Stop;
+            }
+            let added = m.carry_hazards(&mut v);
+            (v, added)
+        };
+        // Seen once at 0.68 m, then out of view: not carried (one verdict).
+        frame(&mut m, Some(0.68));
+        m.advance(&step);
+        let (v, added) = frame(&mut m, None);
+        assert_eq!((v.decision, added), (Decision::Go, 0));
+        // Seen at 0.78 and 0.68 m: carried at 0.58, 0.48, ... down to the front axle.
+        frame(&mut m, Some(0.78));
+        m.advance(&step);
+        frame(&mut m, Some(0.68));
+        let mut got = Vec::new();
+        for _ in 0..9 {
+            m.advance(&step);
+            let (v, _) = frame(&mut m, None);
+            got.push(v.hazards.first().map(|h| (h.distance_m * 100.0).round() as i32));
+            assert_eq!(v.decision, if v.hazards.is_empty() { Decision::Go } else { Decision::Stop });
+        }
+        assert_eq!(
+            got,
+            [Some(58), Some(48), Some(38), Some(28), Some(18), Some(8), None, None, None]
+        );
     }
 
     #[test]
