@@ -119,6 +119,29 @@ pub fn open(target: &LinkTarget, baud: u32) -> Result<Box<dyn Transport>, Error>
     })
 }
 
+/// Read every byte waiting on a serial port, without waiting for more, handing each
+/// to `each` (the controller's messages coming back on a serial or SLCAN link).
+pub(crate) fn read_waiting(
+    port: &mut dyn serialport::SerialPort,
+    target: &str,
+    mut each: impl FnMut(u8),
+) -> Result<(), Error> {
+    let mut buf = [0u8; 256];
+    loop {
+        let waiting = port.bytes_to_read().map_err(|e| link_err(target, e))? as usize;
+        if waiting == 0 {
+            return Ok(());
+        }
+        let n = port
+            .read(&mut buf[..waiting.min(256)])
+            .map_err(|e| link_err(target, e))?;
+        if n == 0 {
+            return Ok(());
+        }
+        buf[..n].iter().for_each(|&b| each(b));
+    }
+}
+
 pub(crate) fn link_err(target: &str, e: impl std::fmt::Display) -> Error {
     Error::Link {
         target: target.to_string(),

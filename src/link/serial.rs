@@ -1,4 +1,4 @@
-use std::io::{Read, Write};
+use std::io::Write;
 
 use rover_terrain_proto::serial::{encode, Decoder, Message};
 
@@ -49,26 +49,12 @@ impl Transport for SerialTransport {
     }
 
     fn receive_odometry(&mut self, sink: &mut dyn FnMut(proto::Odometry)) -> Result<(), Error> {
-        let err = |e: &dyn std::fmt::Display| link_err(&format!("serial:{}", self.path), e);
-        let mut buf = [0u8; 256];
-        loop {
-            let waiting = self.port.bytes_to_read().map_err(|e| err(&e))? as usize;
-            if waiting == 0 {
-                return Ok(());
+        let decoder = &mut self.decoder;
+        super::read_waiting(&mut *self.port, &format!("serial:{}", self.path), |b| {
+            if let Some(Ok(Message::Odometry(o))) = decoder.push(b) {
+                sink(o);
             }
-            let n = self
-                .port
-                .read(&mut buf[..waiting.min(256)])
-                .map_err(|e| err(&e))?;
-            for &b in &buf[..n] {
-                if let Some(Ok(Message::Odometry(o))) = self.decoder.push(b) {
-                    sink(o);
-                }
-            }
-            if n == 0 {
-                return Ok(());
-            }
-        }
+        })
     }
 
     fn flush(&mut self) -> Result<(), Error> {

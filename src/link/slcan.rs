@@ -3,7 +3,7 @@
 //! digit of length + 2 hex digits per byte + `\r`; `C` closes the channel, `S6` sets
 //! 500 kbit/s, `O` opens it.
 
-use std::io::{Read, Write};
+use std::io::Write;
 
 use rover_terrain_proto::can::{self, Frame};
 
@@ -100,34 +100,20 @@ impl Transport for SlcanTransport {
     }
 
     fn receive_odometry(&mut self, sink: &mut dyn FnMut(proto::Odometry)) -> Result<(), Error> {
-        let err = |e: &dyn std::fmt::Display| link_err(&format!("slcan:{}", self.path), e);
-        let mut buf = [0u8; 256];
-        loop {
-            let waiting = self.port.bytes_to_read().map_err(|e| err(&e))? as usize;
-            if waiting == 0 {
-                return Ok(());
+        let line = &mut self.line;
+        super::read_waiting(&mut *self.port, &format!("slcan:{}", self.path), |b| {
+            if b != b'\r' {
+                // An overlong line is garbage: it will not parse.
+                let _ = line.push(b);
+                return;
             }
-            let n = self
-                .port
-                .read(&mut buf[..waiting.min(256)])
-                .map_err(|e| err(&e))?;
-            for &b in &buf[..n] {
-                if b != b'\r' {
-                    // An overlong line is garbage: it will not parse.
-                    let _ = self.line.push(b);
-                    continue;
+            if let Some(f) = parse(line).filter(|f| f.id == can::ODOMETRY_ID) {
+                if let Ok(o) = proto::Odometry::decode(&f.data) {
+                    sink(o);
                 }
-                if let Some(f) = parse(&self.line).filter(|f| f.id == can::ODOMETRY_ID) {
-                    if let Ok(o) = proto::Odometry::decode(&f.data) {
-                        sink(o);
-                    }
-                }
-                self.line.clear();
             }
-            if n == 0 {
-                return Ok(());
-            }
-        }
+            line.clear();
+        })
     }
 
     fn flush(&mut self) -> Result<(), Error> {

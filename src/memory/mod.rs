@@ -776,12 +776,33 @@ mod tests {
         for _ in 0..9 {
             m.advance(&step);
             let (v, _) = frame(&mut m, None);
-            got.push(v.hazards.first().map(|h| (h.distance_m * 100.0).round() as i32));
-            assert_eq!(v.decision, if v.hazards.is_empty() { Decision::Go } else { Decision::Stop });
+            got.push(
+                v.hazards
+                    .first()
+                    .map(|h| (h.distance_m * 100.0).round() as i32),
+            );
+            assert_eq!(
+                v.decision,
+                if v.hazards.is_empty() {
+                    Decision::Go
+                } else {
+                    Decision::Stop
+                }
+            );
         }
         assert_eq!(
             got,
-            [Some(58), Some(48), Some(38), Some(28), Some(18), Some(8), None, None, None]
+            [
+                Some(58),
+                Some(48),
+                Some(38),
+                Some(28),
+                Some(18),
+                Some(8),
+                None,
+                None,
+                None
+            ]
         );
     }
 
