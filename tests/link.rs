@@ -344,3 +344,37 @@ fn the_controller_simulator_sends_odometry_the_protocol_decodes_over_a_pty() {
     assert_eq!(total.forward_mm, 78);
     assert!((f64::from(total.dheading_rad) + 3.9f64.to_radians()).abs() < 2e-4);
 }
+
+#[test]
+fn odometry_comes_back_on_serial_and_slcan_links_through_garbage() {
+    use rover_terrain::link::proto::{can, Odometry};
+    let sent = [
+        Odometry::from_pose(1, 20, 0.5, 0.01, 0.2),
+        Odometry::from_pose(2, 40, 0.51, 0.01, 0.21),
+    ];
+    for kind in ["serial", "slcan"] {
+        let (mut master, slave) = pair();
+        let target: LinkTarget = format!("{kind}:{}", slave.name().unwrap()).parse().unwrap();
+        let mut link = rover_terrain::link::open(&target, 115_200).unwrap();
+        // A verdict-sized garbage frame and a stray line first: skipped, not fatal.
+        for o in &sent {
+            let bytes: Vec<u8> = if kind == "serial" {
+                let mut b = vec![7, 7, 7, 0];
+                b.extend_from_slice(&encode(&Message::Odometry(*o)));
+                b
+            } else {
+                let mut b = b"t31080000000000000000\rnonsense\r".to_vec();
+                b.extend_from_slice(slcan::encode(&can::odometry_frame(o)).as_bytes());
+                b
+            };
+            master.write_all(&bytes).unwrap();
+        }
+        master.flush().unwrap();
+        let mut got = Vec::new();
+        let deadline = Instant::now() + Duration::from_secs(5);
+        while got.len() < sent.len() && Instant::now() < deadline {
+            link.receive_odometry(&mut |o| got.push(o)).unwrap();
+        }
+        assert_eq!(got, sent, "{kind}");
+    }
+}
