@@ -603,3 +603,87 @@ fn odometry_from_the_controller_fuses_frames_and_its_silence_falls_back() {
     );
     assert!(!h.log.iter().any(|(_, e)| matches!(e, Event::BadFrame)));
 }
+
+#[test]
+fn run_on_a_recorded_drive_fuses_over_the_controller_simulator_s_odometry() {
+    use rover_terrain::sim::drive::{render_drive, write_recording, Step};
+    use rover_terrain::sim::{Element, Terrain};
+    use std::io::Write;
+    // A recorded drive toward a block, without its odometry file: the odometry comes
+    // from the `controller` command on a second pty, relayed to the service's link
+    // (the wire between the two devices).
+    let config = rover_terrain::Config::default();
+    let block = Terrain::new(vec![Element::Block {
+        x_m: 1.515,
+        y_m: 0.45,
+        length_m: 0.3,
+        width_m: 0.3,
+        height_m: 0.15,
+    }]);
+    let steps = [Step {
+        forward_m: 0.05,
+        turn_rad: 0.0,
+    }; 9];
+    let dir = tempfile::tempdir().unwrap();
+    write_recording(
+        dir.path(),
+        &render_drive(&block, &config, &steps, 1.0, 10.0),
+    )
+    .unwrap();
+    std::fs::remove_file(dir.path().join("odometry.txt")).unwrap();
+
+    let mut h = Harness::new();
+    let (mut ctl_master, ctl_slave) = TTYPort::pair().unwrap();
+    ctl_master.set_timeout(Duration::from_millis(100)).unwrap();
+    let mut to_service = h.controller.try_clone_native().unwrap();
+    let relaying = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true));
+    let still = std::sync::Arc::clone(&relaying);
+    let relay = std::thread::spawn(move || {
+        let mut buf = [0u8; 256];
+        while still.load(std::sync::atomic::Ordering::Relaxed) {
+            if let Ok(n) = ctl_master.read(&mut buf) {
+                to_service.write_all(&buf[..n]).unwrap();
+            }
+        }
+    });
+    let controller = bin()
+        .args([
+            "controller",
+            "--link",
+            &format!("serial:{}", ctl_slave.name().unwrap()),
+        ])
+        .args(["--speed-mps", "0.3", "--count", "400"])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let camera = format!("fake:{}", dir.path().display());
+    let child = h.spawn(
+        &["--camera", &camera, "--loop", "--frames", "150"],
+        2_000_000,
+    );
+    h.collect_until("a heartbeat saying the memory is fused", |log| {
+        log.iter()
+            .any(|(_, e)| matches!(e, Event::Heartbeat(hb) if hb.memory_fused))
+    });
+    let stderr = finish(child);
+    h.drain();
+    let out = controller.wait_with_output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    relaying.store(false, std::sync::atomic::Ordering::Relaxed);
+    relay.join().unwrap();
+    drop(ctl_slave);
+    assert!(
+        stderr.contains("terrain memory: fusing frames over odometry"),
+        "{stderr}"
+    );
+    // The block is ahead in every frame: every fresh verdict stops for it.
+    let v = h.verdicts();
+    assert!(
+        v.iter().filter(|v| v.decision == Decision::Stop).count() > 20,
+        "{v:?}"
+    );
+}
