@@ -120,21 +120,23 @@ pub fn open(target: &LinkTarget, baud: u32) -> Result<Box<dyn Transport>, Error>
 }
 
 /// Read every byte waiting on a serial port, without waiting for more, handing each
-/// to `each` (the controller's messages coming back on a serial or SLCAN link).
+/// to `each` (the controller's messages coming back on a serial or SLCAN link). The
+/// link's name (`kind:path`) is only put together for an error: nothing allocates.
 pub(crate) fn read_waiting(
     port: &mut dyn serialport::SerialPort,
-    target: &str,
+    (kind, path): (&str, &str),
     mut each: impl FnMut(u8),
 ) -> Result<(), Error> {
+    let err = |e: serialport::Error| link_err(&format!("{kind}:{path}"), e);
     let mut buf = [0u8; 256];
     loop {
-        let waiting = port.bytes_to_read().map_err(|e| link_err(target, e))? as usize;
+        let waiting = port.bytes_to_read().map_err(err)? as usize;
         if waiting == 0 {
             return Ok(());
         }
         let n = port
             .read(&mut buf[..waiting.min(256)])
-            .map_err(|e| link_err(target, e))?;
+            .map_err(|e| err(e.into()))?;
         if n == 0 {
             return Ok(());
         }

@@ -50,7 +50,7 @@ impl Transport for SerialTransport {
 
     fn receive_odometry(&mut self, sink: &mut dyn FnMut(proto::Odometry)) -> Result<(), Error> {
         let decoder = &mut self.decoder;
-        super::read_waiting(&mut *self.port, &format!("serial:{}", self.path), |b| {
+        super::read_waiting(&mut *self.port, ("serial", &self.path), |b| {
             if let Some(Ok(Message::Odometry(o))) = decoder.push(b) {
                 sink(o);
             }

@@ -101,7 +101,7 @@ impl Transport for SlcanTransport {
 
     fn receive_odometry(&mut self, sink: &mut dyn FnMut(proto::Odometry)) -> Result<(), Error> {
         let line = &mut self.line;
-        super::read_waiting(&mut *self.port, &format!("slcan:{}", self.path), |b| {
+        super::read_waiting(&mut *self.port, ("slcan", &self.path), |b| {
             if b != b'\r' {
                 // An overlong line is garbage: it will not parse.
                 let _ = line.push(b);
