@@ -261,11 +261,7 @@ fn climb_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> f32 {
 /// The least-squares slope |dz/dx| of a run's wheel heights when they lie on one line
 /// within [`ROUGH_LINE_RMS_M`], else `None`.
 fn line_slope(run: &[StripCell]) -> Option<f32> {
-    let mut fit = PlaneFit::default();
-    for c in run {
-        fit.add(f64::from(c.x), 0.0, f64::from(c.wheel), 1.0);
-    }
-    let p = fit.solve()?;
+    let p = wheel_line(run)?;
     let ms = run
         .iter()
         .map(|c| (f64::from(c.wheel) - p.z(f64::from(c.x), 0.0)).powi(2))
@@ -283,11 +279,17 @@ const ROUGH_LINE_RMS_M: f32 = 0.016;
 /// The least-squares slope |dz/dx| of a run's wheel heights: on rough ground the
 /// ends of a run may sit on a dip and a bump, steeper than the ground between.
 fn fitted_slope(run: &[StripCell]) -> f32 {
+    wheel_line(run).map_or(0.0, |p| p.a.abs() as f32)
+}
+
+/// The least-squares line `z = a·x + c` through a run's wheel heights (as a plane with
+/// b = 0); `None` with fewer than two distinct x.
+fn wheel_line(run: &[StripCell]) -> Option<super::plane::Plane> {
     let mut fit = PlaneFit::default();
     for c in run {
         fit.add(f64::from(c.x), 0.0, f64::from(c.wheel), 1.0);
     }
-    fit.solve().map_or(0.0, |p| p.a.abs() as f32)
+    fit.solve()
 }
 
 /// How far a cell may sit off the line for a run to count as one slope, metres.

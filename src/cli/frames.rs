@@ -4,7 +4,6 @@
 
 use std::path::{Path, PathBuf};
 
-use rover_terrain::link::proto;
 use rover_terrain::{Config, Pipeline, Verdict};
 use rover_terrain_drivers::{CameraSpec, DepthFrame, FrameStatus};
 
@@ -99,12 +98,7 @@ pub fn for_each_verdict(
             index += 1;
             let motion = match tracker.as_mut() {
                 Some(t) => {
-                    if let Some(o) = frame
-                        .odometry
-                        .and_then(|b| proto::Odometry::decode(&b).ok())
-                    {
-                        t.on_odometry(o, frame.timestamp_s);
-                    }
+                    t.on_recorded(frame.odometry, frame.timestamp_s);
                     t.motion(frame.timestamp_s)
                 }
                 None => Err(rover_terrain::memory::odometry::Untrusted::NoOdometry),

@@ -63,6 +63,15 @@ impl Tracker {
         self.latest = Some((o, now_s));
     }
 
+    /// A frame arrived at `now_s` carrying the odometry recorded with it (a replayed
+    /// drive): as if the message had just arrived. Bytes that are not an odometry
+    /// message, or none, change nothing.
+    pub fn on_recorded(&mut self, bytes: Option<[u8; 8]>, now_s: f64) {
+        if let Some(o) = bytes.and_then(|b| Odometry::decode(&b).ok()) {
+            self.on_odometry(o, now_s);
+        }
+    }
+
     /// The motion since the previous call, for a frame analysed at `now_s`: the
     /// difference of the latest message to the one the previous frame ended at.
     /// Every call moves the reference on, so an untrusted answer costs one frame.

@@ -118,14 +118,12 @@ impl Stage {
         let t0 = Instant::now();
         let queued = t0 - slot.arrived;
         // A replayed drive carries the odometry recorded with each frame.
-        if let Some((tracker, bytes)) = self.tracker.as_mut().zip(slot.frame.odometry) {
-            if let Ok(o) = proto::Odometry::decode(&bytes) {
-                let at = slot
-                    .arrived
-                    .saturating_duration_since(self.start)
-                    .as_secs_f64();
-                tracker.on_odometry(o, at);
-            }
+        if let Some(tracker) = self.tracker.as_mut() {
+            let at = slot
+                .arrived
+                .saturating_duration_since(self.start)
+                .as_secs_f64();
+            tracker.on_recorded(slot.frame.odometry, at);
         }
         let motion = self.motion(t0);
         let outcome = self
