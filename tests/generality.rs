@@ -223,9 +223,6 @@ fn random_scene_families_on_random_rigs_never_give_a_false_go() {
 fn rough_ground_under_a_full_width_ramp_changes_no_verdict_and_keeps_the_measures() {
     // ±2.5 cm bumps swing a wheel-radius run on a 24° ramp past 30°, and bias a face
     // fit that keeps only cells over the rise threshold: neither may show.
-    // (Rough descents are left out: where the descent is seen at 8-12° incidence, near
-    // the corridor's end, bumps can hide whole cells and give a false drop-off there:
-    // a known false stop, see README.)
     for seed in 1..=4u64 {
         let rough = Element::Rough {
             amplitude_m: 0.025,
@@ -251,5 +248,59 @@ fn rough_ground_under_a_full_width_ramp_changes_no_verdict_and_keeps_the_measure
             (g - grad).abs() <= 2.0,
             "seed {seed}: gradient {g}, expected {grad}"
         );
+    }
+}
+
+#[test]
+fn rough_descents_seen_at_grazing_incidence_are_go_and_rough_drop_offs_stop() {
+    // A 12-13° descent seen from 0.8 m at about 8-10° incidence near the corridor's
+    // end: the bumps' backs hide whole cells there, which are rough ground's shadows
+    // (the cells before them are rough: their heights scatter about their line), not a
+    // drop-off.
+    for (i, (seed, corr, toe, grad)) in [
+        (8989724162424018479u64, 0.168, 1.683, -12.4),
+        (48000085485884931, 0.138, 1.493, -13.1),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let rough = Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m: corr,
+            seed,
+        };
+        let ramp = Element::ramp(toe, 0.0, grad, 0.0, Extent::Full);
+        let v = analyse(vec![rough.clone(), ramp], &Config::default());
+        assert_eq!(v.decision, Decision::Go, "seed {seed}: {:?}", v.hazards);
+        let f = v.feature.expect("a go has a feature");
+        assert_eq!(f.workcase, 8, "seed {seed}");
+        let g = f64::from(f.gradient_deg.unwrap());
+        assert!(
+            (g - grad).abs() <= 2.0,
+            "seed {seed}: gradient {g}, expected {grad}"
+        );
+        // The same rough ground with a 0.5 m drop at 2.0 m, and one at 2.85 m where
+        // the gap runs to the corridor's end: a drop-off's gap is longer than any
+        // bump's shadow, or ends below the ground before it (one seed: rendering
+        // rough ground is slow).
+        for edge in [2.0, 2.85].into_iter().filter(|_| i == 0) {
+            let drop = Element::Step {
+                x_m: edge,
+                height_m: -0.5,
+                extent: Extent::Full,
+            };
+            let v = analyse(vec![rough.clone(), drop], &Config::default());
+            assert_eq!(
+                v.decision,
+                Decision::Stop,
+                "seed {seed} edge {edge}: {:?}",
+                v.hazards
+            );
+            assert!(
+                v.hazards.iter().any(|h| h.kind == HazardKind::DropOff),
+                "seed {seed} edge {edge}: {:?}",
+                v.hazards
+            );
+        }
     }
 }

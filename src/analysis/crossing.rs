@@ -460,7 +460,7 @@ struct Recent {
 }
 
 impl Recent {
-    const N: usize = 6;
+    const N: usize = 16;
     /// Cells farther back than this from the last one do not count for the slope.
     const SPAN_M: f32 = 0.4;
 
@@ -475,6 +475,28 @@ impl Recent {
 
     fn last(&self) -> Option<(f32, f32)> {
         self.len.checked_sub(1).map(|i| self.cells[i])
+    }
+
+    /// The least-squares line z = slope·x + c through every recent cell, as its
+    /// slope and the RMS of the cells' heights about it (metres): how rough the ground
+    /// before a gap is over [`Self::N`] cells. `None` with fewer than
+    /// [`ROUGH_MIN_CELLS`] cells or spanning under half a metre.
+    fn line(&self) -> Option<(f32, f32)> {
+        let cells = &self.cells[..self.len];
+        let (x0, xl) = (cells.first()?.0, cells.last()?.0);
+        if self.len < ROUGH_MIN_CELLS || xl - x0 < 0.5 {
+            return None;
+        }
+        let mut fit = PlaneFit::default();
+        for &(x, z) in cells {
+            fit.add(f64::from(x - xl), 0.0, f64::from(z), 1.0);
+        }
+        let p = fit.solve()?;
+        let ss: f64 = cells
+            .iter()
+            .map(|&(x, z)| (f64::from(z) - p.z(f64::from(x - xl), 0.0)).powi(2))
+            .sum();
+        Some((p.a as f32, (ss / cells.len() as f64).sqrt() as f32))
     }
 
     /// Least-squares slope dz/dx of the recent cells within [`Self::SPAN_M`] of the
@@ -498,6 +520,14 @@ impl Recent {
 /// Below this angle between the line of sight and the surface, a camera gets too
 /// few points to see a cell, degrees.
 pub const GRAZING_DEG: f32 = 6.0;
+
+/// Rough ground's bumps stand up to this many RMS residuals (of the cells before a gap
+/// about their line) above the dips behind them: ±2.5 cm of roughness has an RMS of
+/// about 1.2 cm and 5 cm from crest to trough.
+const BUMP_RMS: f32 = 8.0;
+
+/// Fewest recent cells, over at least half a metre, to judge the ground's roughness.
+const ROUGH_MIN_CELLS: usize = 8;
 
 /// What the unseen run of cells `start..end` in strip `iy` is, given the two seen
 /// cells before it and the first seen cell after it (x, z).
@@ -534,6 +564,7 @@ fn judge_gap(
     if grazing && k < 0.0 {
         return None;
     }
+    let bumps = || bump_shadow(f, iy, start, end, before);
     match after {
         None => {
             // Nothing seen beyond: a drop-off, unless the ground before the gap,
@@ -542,16 +573,36 @@ fn judge_gap(
             let hidden = unseen
                 .clone()
                 .all(|j| super::visibility::explained(f, j, iy, predicted(s.x_centre(j))));
-            (!hidden).then_some(HazardKind::DropOff)
+            (!hidden && !bumps()).then_some(HazardKind::DropOff)
         }
         Some((xa, za)) if za < zb - r && za < predicted(xa) - r => Some(HazardKind::DropOff),
         Some((_, za)) => {
             let all_shadowed = unseen
                 .clone()
                 .all(|j| super::visibility::explained(f, j, iy, za));
-            (!all_shadowed).then_some(HazardKind::Unknown)
+            (!all_shadowed && !bumps()).then_some(HazardKind::Unknown)
         }
     }
+}
+
+/// Whether the unseen run `start..end` of strip `iy` is no longer than the shadow that
+/// rough ground's bumps cast at the camera's incidence on the ground before it: a
+/// bump [`BUMP_RMS`] residuals high hides `h / tan(incidence)` behind it. Smooth
+/// ground (even noisy: a cell's mean height varies by millimetres) casts none worth a
+/// cell, so a drop-off's gap there stays a gap.
+fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -> bool {
+    let (Some((k, rms)), Some((xb, zb))) = (before.line(), before.last()) else {
+        return false;
+    };
+    let s = f.spec;
+    let c = f.camera;
+    let (x, y) = (s.x_centre(start), s.y_centre(iy));
+    let (dx, dy) = (x - c[0], y - c[1]);
+    let d = dx.hypot(dy);
+    let depression = (c[2] - (zb + k * (x - xb))).atan2(d);
+    let incidence = depression + (k * dx / d).atan();
+    let gap_m = (end - start) as f32 * s.voxel_m;
+    incidence > 0.0 && gap_m * incidence.tan() <= BUMP_RMS * rms
 }
 
 #[cfg(test)]
