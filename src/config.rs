@@ -158,8 +158,8 @@ pub struct CameraConfig {
     pub cx: Option<f64>,
     /// Pinhole principal point v, pixels.
     pub cy: Option<f64>,
-    /// The camera `run` reads: `freenect[:INDEX]`, `v4l:PATH` (or `v4l:NAME`), or
-    /// `fake:PATH`; unset = the bundled fixtures through the fake camera.
+    /// The camera `run` reads: `freenect[:INDEX]`, `v4l:PATH` (or `v4l:NAME`),
+    /// `fake:PATH` or `mcap:PATH[#TOPIC]` (a ROS 2 bag); unset = the bundled fixtures through the fake camera.
     pub source: Option<String>,
     /// Frame rate asked of a V4L2 camera, frames per second.
     pub fps: u32,
@@ -338,6 +338,31 @@ impl Config {
             fps: self.camera.fps,
             depth_scale_mm: self.camera.depth_scale_mm as f32,
         }
+    }
+
+    /// Size the camera to what the source says of its own optics (a ROS 2 bag's image
+    /// size and `CameraInfo`): width and height, and the pinhole intrinsics when it has
+    /// them (replacing `fx`, `fy`, `cx`, `cy`). Returns what changed, for the log;
+    /// `None` when nothing did.
+    pub fn apply_intrinsics(&mut self, k: &rover_terrain_drivers::Intrinsics) -> Option<String> {
+        let c = &mut self.camera;
+        let before = (c.width, c.height, c.fx, c.fy, c.cx, c.cy);
+        c.width = u32::try_from(k.width).unwrap_or(u32::MAX);
+        c.height = u32::try_from(k.height).unwrap_or(u32::MAX);
+        if let Some((fx, fy, cx, cy)) = k.pinhole {
+            (c.fx, c.fy, c.cx, c.cy) = (Some(fx), Some(fy), Some(cx), Some(cy));
+        }
+        let after = (c.width, c.height, c.fx, c.fy, c.cx, c.cy);
+        (after != before).then(|| match k.pinhole {
+            Some((fx, fy, cx, cy)) => format!(
+                "camera from the source: {}x{}, pinhole fx {fx:.2} fy {fy:.2} cx {cx:.2} cy {cy:.2} px (replacing [camera])",
+                k.width, k.height
+            ),
+            None => format!(
+                "camera from the source: {}x{} (no calibration: [camera] field of view kept)",
+                k.width, k.height
+            ),
+        })
     }
 
     /// Whether the camera uses pinhole intrinsics rather than the FOV model.

@@ -50,6 +50,24 @@ pub trait DepthCamera {
     fn tilt_state(&mut self) -> Option<crate::fakenect::TiltState> {
         None
     }
+    /// The camera's own account of its optics, for sources that carry one (a ROS 2
+    /// bag's image size and `CameraInfo`): the caller sizes its analysis to it and
+    /// uses its pinhole intrinsics instead of the configured ones. `None` = use the
+    /// configuration.
+    fn intrinsics(&self) -> Option<Intrinsics> {
+        None
+    }
+}
+
+/// A camera's image size and, when calibrated, its pinhole intrinsics.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Intrinsics {
+    /// Image width, pixels.
+    pub width: usize,
+    /// Image height, pixels.
+    pub height: usize,
+    /// Focal lengths and principal point (fx, fy, cx, cy) for this size, pixels.
+    pub pinhole: Option<(f64, f64, f64, f64)>,
 }
 
 /// What a live camera is asked to deliver (from the `[camera]` config section).

@@ -35,6 +35,7 @@ pub struct Faults {
 enum Source {
     Images(Vec<PathBuf>),
     Session(Session),
+    Bag(Box<crate::ros2::Bag>),
 }
 
 /// The file-backed camera: replays one depth image, a directory of images (in name
@@ -120,6 +121,7 @@ impl FakeCamera {
             let files: Vec<Option<String>> = match &source {
                 Source::Images(v) => v.iter().map(|p| name(p)).collect(),
                 Source::Session(s) => s.depth_entries().iter().map(|e| name(&e.path)).collect(),
+                Source::Bag(_) => Vec::new(),
             };
             files
                 .iter()
@@ -146,6 +148,29 @@ impl FakeCamera {
         })
     }
 
+    /// Open a ROS 2 bag's depth topic (see [`crate::ros2::Bag::open`]): replayed like
+    /// any recording, paced by its messages' log times.
+    pub fn open_bag(path: &Path, topic: Option<&str>) -> Result<Self, DriverError> {
+        let bag = crate::ros2::Bag::open(path, topic)?;
+        let label = format!("mcap:{}#{}", path.display(), bag.topic());
+        Ok(FakeCamera {
+            source: Source::Bag(Box::new(bag)),
+            label,
+            next: 0,
+            seq: 0,
+            looping: false,
+            scratch: Vec::new(),
+            last: None,
+            pace: Pace::AsFastAsPossible,
+            faults: Faults::default(),
+            calls: 0,
+            stalled: 0,
+            started: None,
+            cache: None,
+            odometry: Vec::new(),
+        })
+    }
+
     /// Decode every frame now and replay from memory, so that delivering a frame is a
     /// copy (no file reads, no decoder allocations: the service's zero-allocation
     /// hot path). Only if one pass fits in `max_bytes` of pixels; otherwise the camera
@@ -157,9 +182,10 @@ impl FakeCamera {
         let mut scratch = Vec::new();
         for i in 0..self.len() {
             let mut frame = DepthFrame::default();
-            let read = match &self.source {
+            let read = match &mut self.source {
                 Source::Images(v) => read_depth_image(&v[i], &mut scratch, &mut frame),
                 Source::Session(s) => s.read_depth(i, &mut scratch, &mut frame),
+                Source::Bag(b) => b.read(i, &mut frame),
             };
             cache.push(match read {
                 Ok(()) => {
@@ -198,6 +224,7 @@ impl FakeCamera {
         match &self.source {
             Source::Images(_) => self.seq as f64 * IMAGE_SEQUENCE_PERIOD_S,
             Source::Session(s) => s.depth_entries()[i].time_s,
+            Source::Bag(b) => b.time_s(i),
         }
     }
 
@@ -233,6 +260,7 @@ impl FakeCamera {
         match &self.source {
             Source::Images(v) => v.len(),
             Source::Session(s) => s.depth_entries().len(),
+            Source::Bag(b) => b.len(),
         }
     }
 
@@ -241,13 +269,14 @@ impl FakeCamera {
         self.len() == 0
     }
 
-    /// The file of the frame last delivered.
+    /// The file of the frame last delivered (a bag's frames: none, they share one).
     pub fn last_path(&self) -> Option<&Path> {
         let i = self.last?;
-        Some(match &self.source {
-            Source::Images(v) => &v[i],
-            Source::Session(s) => &s.depth_entries()[i].path,
-        })
+        match &self.source {
+            Source::Images(v) => Some(&v[i]),
+            Source::Session(s) => Some(&s.depth_entries()[i].path),
+            Source::Bag(_) => None,
+        }
     }
 }
 
@@ -312,7 +341,7 @@ impl DepthCamera for FakeCamera {
                         .copy_from_slice(f.pixels());
                     frame.timestamp_s = match &self.source {
                         Source::Images(_) => self.seq as f64 * IMAGE_SEQUENCE_PERIOD_S,
-                        Source::Session(_) => f.timestamp_s,
+                        Source::Session(_) | Source::Bag(_) => f.timestamp_s,
                     };
                 }
                 Cached::Bad(what) => {
@@ -326,12 +355,13 @@ impl DepthCamera for FakeCamera {
             self.seq += 1;
             return Ok(FrameStatus::Frame);
         }
-        match &self.source {
+        match &mut self.source {
             Source::Images(v) => {
                 read_depth_image(&v[i], &mut self.scratch, frame)?;
                 frame.timestamp_s = self.seq as f64 * IMAGE_SEQUENCE_PERIOD_S;
             }
             Source::Session(s) => s.read_depth(i, &mut self.scratch, frame)?,
+            Source::Bag(b) => b.read(i, frame)?,
         }
         frame.seq = self.seq;
         self.seq += 1;
@@ -366,7 +396,14 @@ impl DepthCamera for FakeCamera {
                 let i = self.last?;
                 s.tilt_at(s.depth_entries()[i].time_s).copied()
             }
-            Source::Images(_) => None,
+            Source::Images(_) | Source::Bag(_) => None,
+        }
+    }
+
+    fn intrinsics(&self) -> Option<crate::Intrinsics> {
+        match &self.source {
+            Source::Bag(b) => Some(b.intrinsics()),
+            _ => None,
         }
     }
 }

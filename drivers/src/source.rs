@@ -13,6 +13,14 @@ pub enum CameraSpec {
     V4l(std::path::PathBuf),
     /// `fake:PATH`: a depth image, a directory of them, or a fakenect session.
     Fake(std::path::PathBuf),
+    /// `mcap:PATH[#TOPIC]`: a ROS 2 bag's depth image topic (the only one when no
+    /// topic is given), replayed like `fake:`.
+    Mcap {
+        /// The bag.
+        path: std::path::PathBuf,
+        /// The depth topic, e.g. `/camera/depth/image_raw`.
+        topic: Option<String>,
+    },
 }
 
 impl std::str::FromStr for CameraSpec {
@@ -35,8 +43,24 @@ impl std::str::FromStr for CameraSpec {
                 .map_err(|_| bad("the index must be a number")),
             ("v4l", Some(p)) if !p.is_empty() => Ok(CameraSpec::V4l(p.into())),
             ("fake", Some(p)) if !p.is_empty() => Ok(CameraSpec::Fake(p.into())),
-            ("v4l" | "fake", _) => Err(bad("needs a path after ':'")),
-            _ => Err(bad("expected freenect[:INDEX], v4l:PATH or fake:PATH")),
+            ("mcap", Some(p)) if !p.is_empty() => {
+                let (path, topic) = match p.rsplit_once('#') {
+                    Some((path, topic)) if !topic.is_empty() => (path, Some(topic.to_string())),
+                    Some(_) => return Err(bad("needs a topic after '#'")),
+                    None => (p, None),
+                };
+                if path.is_empty() {
+                    return Err(bad("needs a path after ':'"));
+                }
+                Ok(CameraSpec::Mcap {
+                    path: path.into(),
+                    topic,
+                })
+            }
+            ("v4l" | "fake" | "mcap", _) => Err(bad("needs a path after ':'")),
+            _ => Err(bad(
+                "expected freenect[:INDEX], v4l:PATH, fake:PATH or mcap:PATH[#TOPIC]",
+            )),
         }
     }
 }
@@ -71,6 +95,18 @@ pub fn list_cameras() -> Vec<String> {
     out
 }
 
+/// What the source `spec` names knows of its own optics before it is opened for
+/// streaming (a ROS 2 bag: its image size and `CameraInfo`, see
+/// [`crate::DepthCamera::intrinsics`]); `None` for every other source.
+pub fn probe_intrinsics(spec: &CameraSpec) -> Result<Option<crate::Intrinsics>, DriverError> {
+    match spec {
+        CameraSpec::Mcap { path, topic } => Ok(Some(
+            crate::ros2::Bag::open(path, topic.as_deref())?.intrinsics(),
+        )),
+        _ => Ok(None),
+    }
+}
+
 /// Open the camera `spec` names, with the default [`CameraOptions`].
 pub fn open(spec: &CameraSpec) -> Result<Box<dyn DepthCamera>, DriverError> {
     open_with(spec, &CameraOptions::default())
@@ -86,6 +122,10 @@ pub fn open_with(
     let _ = options;
     match spec {
         CameraSpec::Fake(p) => Ok(Box::new(crate::FakeCamera::open(p)?)),
+        CameraSpec::Mcap { path, topic } => Ok(Box::new(crate::FakeCamera::open_bag(
+            path,
+            topic.as_deref(),
+        )?)),
         #[cfg(feature = "freenect")]
         CameraSpec::Freenect(i) => Ok(Box::new(crate::freenect::FreenectCamera::open(*i)?)),
         #[cfg(not(feature = "freenect"))]
@@ -127,10 +167,42 @@ mod tests {
             CameraSpec::Fake("a/b".into())
         );
         assert_eq!(
+            "mcap:run.mcap#/camera/depth/image_raw"
+                .parse::<CameraSpec>()
+                .unwrap(),
+            CameraSpec::Mcap {
+                path: "run.mcap".into(),
+                topic: Some("/camera/depth/image_raw".into())
+            }
+        );
+        assert_eq!(
+            "mcap:day#1/run.mcap#/depth".parse::<CameraSpec>().unwrap(),
+            CameraSpec::Mcap {
+                path: "day#1/run.mcap".into(),
+                topic: Some("/depth".into())
+            }
+        );
+        assert_eq!(
+            "mcap:run.mcap".parse::<CameraSpec>().unwrap(),
+            CameraSpec::Mcap {
+                path: "run.mcap".into(),
+                topic: None
+            }
+        );
+        assert_eq!(
             "v4l:/dev/video2".parse::<CameraSpec>().unwrap(),
             CameraSpec::V4l("/dev/video2".into())
         );
-        for bad in ["freenect:x", "fake:", "v4l", "webcam:0", ""] {
+        for bad in [
+            "freenect:x",
+            "fake:",
+            "v4l",
+            "webcam:0",
+            "",
+            "mcap:",
+            "mcap:a#",
+            "mcap:#t",
+        ] {
             let e = bad.parse::<CameraSpec>().unwrap_err().to_string();
             assert!(e.contains(&format!("{bad:?}")), "{e}");
         }

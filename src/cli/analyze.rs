@@ -30,7 +30,7 @@ pub struct Args {
     /// `monitor` prints it.
     #[arg(long, value_enum, default_value_t = Format::Full)]
     format: Format,
-    /// A camera instead of files: freenect[:INDEX], v4l:PATH or fake:PATH.
+    /// A camera instead of files: freenect[:INDEX], v4l:PATH, fake:PATH or mcap:PATH[#TOPIC].
     #[arg(long)]
     camera: Option<CameraSpec>,
     /// Stop after this many frames.

@@ -70,6 +70,16 @@ pub fn for_each_verdict(
                 continue;
             }
         };
+        // A source that knows its own optics (a ROS 2 bag: image size, CameraInfo)
+        // sizes the analysis to them.
+        if let Some(k) = camera.intrinsics() {
+            let mut sized = pipeline.config().clone();
+            if let Some(what) = sized.apply_intrinsics(&k) {
+                log::info!("{}: {what}", camera.describe());
+                pipeline = Pipeline::new(sized)
+                    .map_err(|e| anyhow::anyhow!("{}: {e}", camera.describe()))?;
+            }
+        }
         while limit.is_none_or(|n| index < n) {
             let captured = std::time::Instant::now();
             match camera.next_frame(&mut frame) {

@@ -22,7 +22,7 @@ pub struct Args {
     /// With a sequence or session: one set every N frames.
     #[arg(long, default_value_t = 1)]
     every: u64,
-    /// A camera instead of INPUT: freenect[:INDEX], v4l:PATH or fake:PATH.
+    /// A camera instead of INPUT: freenect[:INDEX], v4l:PATH, fake:PATH or mcap:PATH[#TOPIC].
     #[arg(long)]
     camera: Option<CameraSpec>,
     /// Stop after this many frames.

@@ -17,7 +17,7 @@ pub struct Args {
     /// Config file (TOML); `[camera] source`, `[link]` and `[service]` apply.
     #[arg(long)]
     pub config: Option<PathBuf>,
-    /// The camera (overrides `[camera] source`): freenect[:INDEX], v4l:PATH or fake:PATH.
+    /// The camera (overrides `[camera] source`): freenect[:INDEX], v4l:PATH, fake:PATH or mcap:PATH[#TOPIC].
     #[arg(long)]
     camera: Option<CameraSpec>,
     /// The link (overrides `[link] target`): serial:PATH, slcan:PATH, can:IFACE or stdout.

@@ -21,7 +21,7 @@ pub struct Args {
     /// Config file (TOML).
     #[arg(long)]
     config: Option<PathBuf>,
-    /// A camera instead of files: freenect[:INDEX], v4l:PATH or fake:PATH.
+    /// A camera instead of files: freenect[:INDEX], v4l:PATH, fake:PATH or mcap:PATH[#TOPIC].
     #[arg(long)]
     camera: Option<CameraSpec>,
     /// Stop after this many frames.

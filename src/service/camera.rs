@@ -124,15 +124,20 @@ struct CameraThread {
 
 impl CameraThread {
     fn open(&self) -> Result<Box<dyn DepthCamera>, DriverError> {
-        let mut camera: Box<dyn DepthCamera> = match &self.spec {
-            // A recording replays at its recorded pace, from memory when it fits.
-            CameraSpec::Fake(path) => Box::new(
-                FakeCamera::open(path)?
-                    .pace(Pace::Recorded)
+        // A recording replays at its recorded pace, from memory when it fits.
+        let replay = |c: FakeCamera| -> Box<dyn DepthCamera> {
+            Box::new(
+                c.pace(Pace::Recorded)
                     .looping(self.looping)
                     .faults(self.faults.clone())
                     .preload(PRELOAD_BUDGET),
-            ),
+            )
+        };
+        let mut camera: Box<dyn DepthCamera> = match &self.spec {
+            CameraSpec::Fake(path) => replay(FakeCamera::open(path)?),
+            CameraSpec::Mcap { path, topic } => {
+                replay(FakeCamera::open_bag(path, topic.as_deref())?)
+            }
             spec => rover_terrain_drivers::open_with(spec, &self.camera_options)?,
         };
         camera.start()?;

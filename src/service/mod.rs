@@ -154,7 +154,14 @@ fn get(c: &AtomicU64) -> u64 {
 /// cannot be opened, the configuration cannot work); once running, failures are
 /// logged, counted and survived.
 pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Result<Summary, Error> {
-    let config = &options.config;
+    // A source that knows its own optics (a ROS 2 bag) sizes the frames and analysis.
+    let mut sized = options.config.clone();
+    if let Some(k) = rover_terrain_drivers::probe_intrinsics(&options.camera)? {
+        if let Some(what) = sized.apply_intrinsics(&k) {
+            log::info!("{what}");
+        }
+    }
+    let config = &sized;
     let pipeline = Pipeline::new(config.clone())?;
     let counters = Arc::new(Counters::default());
     let camera = camera::start(&options.camera, &options.faults, config, &counters)?;
