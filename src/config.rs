@@ -365,6 +365,31 @@ impl Config {
         })
     }
 
+    /// The camera's intrinsics for `width × height` images, as a pinhole: the
+    /// configured fx/fy/cx/cy scaled to that size, or the FOV model's equivalent
+    /// (fx = w / 2 / tan(hfov / 2), principal point at the image centre).
+    pub fn intrinsics_for(&self, width: usize, height: usize) -> rover_terrain_drivers::Intrinsics {
+        let c = &self.camera;
+        let (w, h) = (width as f64, height as f64);
+        let pinhole = match self.pinhole() {
+            Some((fx, fy, cx, cy)) => {
+                let (sx, sy) = (w / f64::from(c.width), h / f64::from(c.height));
+                (fx * sx, fy * sy, cx * sx, cy * sy)
+            }
+            None => (
+                w / 2.0 / (c.hfov_deg.to_radians() / 2.0).tan(),
+                h / 2.0 / (c.vfov_deg.to_radians() / 2.0).tan(),
+                w / 2.0,
+                h / 2.0,
+            ),
+        };
+        rover_terrain_drivers::Intrinsics {
+            width,
+            height,
+            pinhole: Some(pinhole),
+        }
+    }
+
     /// Whether the camera uses pinhole intrinsics rather than the FOV model.
     pub fn pinhole(&self) -> Option<(f64, f64, f64, f64)> {
         let c = &self.camera;

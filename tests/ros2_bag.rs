@@ -223,3 +223,66 @@ fn a_bag_loops_preloads_and_keeps_its_recorded_clock() {
         format!("mcap:{}#{RAW}", bag("depth-zstd.mcap").display())
     );
 }
+
+#[test]
+fn record_format_mcap_writes_a_bag_that_replays_to_the_same_verdicts() {
+    let exe = env!("CARGO_BIN_EXE_rover-terrain");
+    let session = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/fakenect/ramp-step");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("rec.mcap");
+    let rec = std::process::Command::new(exe)
+        .args(["record", "--format", "mcap", "--frames", "10", "--camera"])
+        .arg(format!("fake:{}", session.display()))
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        rec.status.success(),
+        "{}",
+        String::from_utf8_lossy(&rec.stderr)
+    );
+    let analyse = |camera: String| {
+        let o = std::process::Command::new(exe)
+            .args(["analyze", "--camera", &camera])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout)
+            .unwrap()
+            .lines()
+            .map(|l| {
+                let mut v: serde_json::Value = serde_json::from_str(l).unwrap();
+                // Timing varies; the session names each frame's file, a bag has one.
+                v.as_object_mut().unwrap().remove("timing_us");
+                v.as_object_mut().unwrap().remove("source");
+                v
+            })
+            .collect::<Vec<_>>()
+    };
+    let from_bag = analyse(format!("mcap:{}", out.display()));
+    let from_session = analyse(format!("fake:{}", session.display()));
+    assert_eq!(from_bag.len(), 3);
+    assert_eq!(from_bag, from_session);
+    // The colour came along, on its own topic, not a depth candidate.
+    let e = FakeCamera::open_bag(&out, Some("/camera/color/image_raw")).unwrap_err();
+    assert!(e.to_string().contains("rgb8 640x480, 3 messages"), "{e}");
+    // An --odometry-link is for fakenect sessions only.
+    let o = std::process::Command::new(exe)
+        .args([
+            "record",
+            "--format",
+            "mcap",
+            "--frames",
+            "1",
+            "--odometry-link",
+            "serial:/dev/null",
+        ])
+        .arg(format!("--camera=fake:{}", session.display()))
+        .arg("--out")
+        .arg(dir.path().join("x.mcap"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("fakenect sessions only"));
+}

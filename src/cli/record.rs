@@ -1,4 +1,4 @@
-//! `record`: a camera into a libfreenect fakenect session.
+//! `record`: a camera into a libfreenect fakenect session, or a ROS 2 bag (MCAP).
 
 use std::path::PathBuf;
 
@@ -6,17 +6,27 @@ use anyhow::Context;
 use std::process::ExitCode;
 
 use rover_terrain_drivers::fakenect::{Registration, Session, SessionWriter};
-use rover_terrain_drivers::{CameraSpec, DepthFrame, FrameStatus};
+use rover_terrain_drivers::ros2::{BagTopics, BagWriter};
+use rover_terrain_drivers::{CameraSpec, DepthFrame, FrameStatus, Intrinsics};
 
 /// `record`'s arguments.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// freenect[:INDEX] or fake:PATH.
+    /// freenect[:INDEX], v4l:PATH, fake:PATH or mcap:PATH[#TOPIC].
     #[arg(long)]
     camera: CameraSpec,
-    /// The session directory (must not hold an INDEX.txt yet).
+    /// The session directory (must not hold an INDEX.txt yet), or the bag file for
+    /// `--format mcap`.
     #[arg(long)]
     out: PathBuf,
+    /// `fakenect`: a libfreenect session directory; `mcap`: a ROS 2 bag (depth as
+    /// sensor_msgs/msg/Image 16UC1 with a CameraInfo, colour as rgb8).
+    #[arg(long, value_enum, default_value_t = Format::Fakenect)]
+    format: Format,
+    /// Config file (TOML): `[camera]` gives the CameraInfo of a bag (a source's own
+    /// calibration wins).
+    #[arg(long)]
+    config: Option<PathBuf>,
     /// Stop after this many frames.
     #[arg(long, conflicts_with = "seconds")]
     frames: Option<u64>,
@@ -33,16 +43,34 @@ pub struct Args {
     baud: u32,
 }
 
-/// Record the camera into a fakenect session.
+/// What `record` writes.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// A libfreenect fakenect session directory.
+    Fakenect,
+    /// A ROS 2 bag in MCAP.
+    Mcap,
+}
+
+/// Where frames go: a fakenect session or a ROS 2 bag.
+enum Sink {
+    Session(SessionWriter),
+    Bag(Box<BagWriter>, Intrinsics),
+}
+
+/// Record the camera into a fakenect session or a ROS 2 bag.
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let Args {
         camera,
         out,
+        format,
+        config,
         frames,
         seconds,
         odometry_link,
         baud,
     } = args;
+    let config = super::load_config(config.as_deref())?;
     let (camera, out) = (&camera, out.as_path());
     anyhow::ensure!(
         frames.is_some() || seconds.is_some(),
@@ -58,7 +86,21 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     }
     .unwrap_or(Registration::LIBFREENECT_DEFAULT);
     let mut cam = rover_terrain_drivers::open(camera)?;
-    let mut writer = SessionWriter::create(out, Some(registration))?;
+    let mut sink = match format {
+        Format::Fakenect => Sink::Session(SessionWriter::create(out, Some(registration))?),
+        Format::Mcap => {
+            anyhow::ensure!(
+                odometry_link.is_none(),
+                "--odometry-link records into fakenect sessions only"
+            );
+            // The source's own calibration, else the configured camera (sized to the
+            // first frame below).
+            let k = cam
+                .intrinsics()
+                .unwrap_or_else(|| config.intrinsics_for(0, 0));
+            Sink::Bag(Box::new(BagWriter::create(out, BagTopics::default())?), k)
+        }
+    };
     let mut link = match &odometry_link {
         Some(target) => Some(
             rover_terrain::link::open(target, baud)
@@ -84,8 +126,22 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         // keeps the original timing), else wall time now. The second number in the
         // file name is the frame counter (libfreenect writes the Kinect's timestamp).
         let t = match camera {
-            CameraSpec::Fake(_) => frame.timestamp_s,
+            CameraSpec::Fake(_) | CameraSpec::Mcap { .. } => frame.timestamp_s,
             _ => wall0 + start.elapsed().as_secs_f64(),
+        };
+        let writer = match &mut sink {
+            Sink::Session(w) => w,
+            Sink::Bag(w, k) => {
+                if (k.width, k.height) != (frame.width(), frame.height()) {
+                    *k = config.intrinsics_for(frame.width(), frame.height());
+                }
+                w.write_depth(&frame, t, k)?;
+                if cam.next_colour(&mut colour)? {
+                    w.write_colour(&colour, t)?;
+                }
+                n += 1;
+                continue;
+            }
         };
         let name = writer.write_depth(&frame, t, n as u32)?;
         if let Some(l) = link.as_mut() {
@@ -104,6 +160,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             writer.write_tilt(&tilt, t, n as u32)?;
         }
         n += 1;
+    }
+    if let Sink::Bag(w, _) = sink {
+        w.finish()?;
     }
     eprintln!("recorded {n} frames into {}", out.display());
     Ok(ExitCode::SUCCESS)
