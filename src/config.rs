@@ -26,6 +26,48 @@ pub struct Config {
     pub service: ServiceConfig,
     /// Terrain memory: frames fused over the controller's odometry.
     pub memory: MemoryConfig,
+    /// ROS 2 / Foxglove output: the TF frame names.
+    pub ros: RosConfig,
+}
+
+/// `[ros]`: how the analysis is named for ROS 2 tooling and Foxglove (`--mcap`).
+#[derive(Debug, Clone, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RosConfig {
+    /// The rover body frame of the TF tree (REP 103: x forward, y left, z up).
+    pub base_frame: String,
+    /// The depth camera's optical frame (REP 103 optical: z forward, x right, y down).
+    pub camera_frame: String,
+}
+
+impl Default for RosConfig {
+    fn default() -> Self {
+        RosConfig {
+            base_frame: "base_link".into(),
+            camera_frame: "camera_depth_optical_frame".into(),
+        }
+    }
+}
+
+impl RosConfig {
+    /// `[ros]`: frame names non-empty, without spaces, and not the same.
+    fn check(&self) -> Result<(), Invalid> {
+        for (key, v) in [
+            ("ros.base_frame", &self.base_frame),
+            ("ros.camera_frame", &self.camera_frame),
+        ] {
+            if v.is_empty() || v.chars().any(char::is_whitespace) {
+                return Err((
+                    key,
+                    format!("{v:?}: a TF frame name, non-empty, without spaces"),
+                ));
+            }
+        }
+        if self.base_frame == self.camera_frame {
+            return Err(("ros.camera_frame", "must differ from ros.base_frame".into()));
+        }
+        Ok(())
+    }
 }
 
 /// `[memory]`: the rover-centred height map that keeps what the camera saw as it
@@ -409,6 +451,7 @@ impl Config {
         self.link.check()?;
         self.service.check()?;
         self.memory.check()?;
+        self.ros.check()?;
         self.check_grid()
     }
 
@@ -829,6 +872,18 @@ max_speed_mps = -1
 max_turn_dps = inf
 ",
                 "memory.max_turn_dps",
+            ),
+            (
+                "[ros]
+base_frame = \"\"
+",
+                "ros.base_frame",
+            ),
+            (
+                "[ros]
+camera_frame = \"base_link\"
+",
+                "ros.camera_frame",
             ),
             (
                 "[memory]

@@ -12,6 +12,7 @@ pub mod analysis;
 pub mod bench;
 pub mod config;
 mod error;
+pub mod foxglove;
 pub mod grid;
 pub mod inspect;
 pub mod level;

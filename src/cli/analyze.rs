@@ -5,6 +5,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Context;
+use rover_terrain::foxglove::{Frames, McapOut};
+use rover_terrain::inspect::Scene;
 use rover_terrain::link::wire;
 use rover_terrain_drivers::CameraSpec;
 
@@ -36,6 +38,11 @@ pub struct Args {
     /// Stop after this many frames.
     #[arg(long)]
     frames: Option<u64>,
+    /// Also write every frame's depth image, verdict, voxel cloud, ground grid,
+    /// drawing and camera transform into this MCAP file, for Foxglove and ROS 2
+    /// tooling (topics in the README).
+    #[arg(long)]
+    mcap: Option<PathBuf>,
     /// Depth images, directories or fakenect sessions.
     input: Vec<PathBuf>,
 }
@@ -44,22 +51,27 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     let config = load_config(args.config.as_deref())?;
     let inputs = sources(args.camera, args.input, Some(bundled("fixtures/scenes")))?;
+    let mut mcap = args
+        .mcap
+        .as_deref()
+        .map(|p| McapOut::create(p, Frames::of(&config)))
+        .transpose()?;
     let stdout = std::io::stdout();
     let mut out = stdout.lock();
     let failed = for_each_verdict(config, &inputs, args.frames, |a| {
         let v = a.verdict;
         let json = match args.format {
-            Format::Full => {
-                let mut json = v.to_json();
-                if let Some(p) = a.source {
-                    json["source"] = serde_json::Value::from(p.display().to_string());
-                }
-                json
-            }
+            Format::Full => a.json(),
             Format::Wire => wire::verdict_json(&wire::to_wire(v, 0.0)),
         };
+        if let Some(m) = mcap.as_mut() {
+            m.write(a.frame, &Scene::of(a.pipeline, v), &json)?;
+        }
         writeln!(out, "{json}").context("writing to stdout")
     })?;
     out.flush().context("writing to stdout")?;
+    if let Some(m) = mcap {
+        m.finish()?;
+    }
     Ok(exit_code(failed))
 }

@@ -35,6 +35,17 @@ pub struct Analysed<'a> {
     pub pipeline: &'a Pipeline,
 }
 
+impl Analysed<'_> {
+    /// The verdict as `analyze` prints it: every field, and the frame's file.
+    pub fn json(&self) -> serde_json::Value {
+        let mut json = self.verdict.to_json();
+        if let Some(p) = self.source {
+            json["source"] = serde_json::Value::from(p.display().to_string());
+        }
+        json
+    }
+}
+
 /// Analyse every frame of every source (up to `limit` frames) and hand each verdict
 /// (with its source file and the moment its frame was read) to `on_verdict`. A bad
 /// source or frame is reported on stderr and the rest still analysed; returns whether

@@ -1,6 +1,9 @@
 //! `inspect`: pictures of analysed frames for people.
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
+
+use anyhow::Context;
 use std::process::ExitCode;
 
 use rover_terrain::Config;
@@ -28,6 +31,10 @@ pub struct Args {
     /// Stop after this many frames.
     #[arg(long)]
     frames: Option<u64>,
+    /// Also write the frames inspected into this MCAP file for Foxglove (as
+    /// `analyze --mcap`): the same picture as `topdown.png`, in 3D.
+    #[arg(long)]
+    mcap: Option<PathBuf>,
     /// A depth image, a directory of them, or a fakenect session.
     #[arg(required_unless_present = "camera")]
     input: Option<PathBuf>,
@@ -43,7 +50,14 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         (None, Some(p)) => CameraSpec::Fake(p),
         (None, None) => anyhow::bail!("give INPUT or --camera"),
     };
-    write_sets(config, &spec, &args.out, args.every, args.frames)
+    write_sets(
+        config,
+        &spec,
+        &args.out,
+        args.every,
+        args.frames,
+        args.mcap.as_deref(),
+    )
 }
 
 /// `inspect`: a picture set for every `every`-th frame of `spec`.
@@ -53,8 +67,13 @@ fn write_sets(
     out: &Path,
     every: u64,
     limit: Option<u64>,
+    mcap: Option<&Path>,
 ) -> anyhow::Result<ExitCode> {
+    use rover_terrain::foxglove::{Frames, McapOut};
     use rover_terrain::inspect::{write_frame_set, Scene};
+    let mut mcap = mcap
+        .map(|p| McapOut::create(p, Frames::of(&config)))
+        .transpose()?;
     let single = match spec {
         CameraSpec::Fake(p) => FakeCamera::open(p).is_ok_and(|c| c.len() == 1),
         _ => false,
@@ -69,12 +88,18 @@ fn write_sets(
         } else {
             out.join(format!("frame-{:06}", a.frame.seq))
         };
-        let set = write_frame_set(a.frame, &Scene::of(a.pipeline, a.verdict), &dir)?;
+        let scene = Scene::of(a.pipeline, a.verdict);
+        let set = write_frame_set(a.frame, &scene, &dir)?;
+        if let Some(m) = mcap.as_mut() {
+            m.write(a.frame, &scene, &a.json())?;
+        }
         let files: Vec<String> = [&set.depth, &set.topdown, &set.side, &set.pcd, &set.ply]
             .iter()
             .map(|p| p.display().to_string())
             .collect();
-        println!(
+        // A closed stdout (`| head`) ends the run with an error, not a panic.
+        writeln!(
+            std::io::stdout().lock(),
             "{}",
             serde_json::json!({
                 "frame": a.frame.seq,
@@ -82,10 +107,14 @@ fn write_sets(
                 "dir": dir.display().to_string(),
                 "files": files,
             })
-        );
+        )
+        .context("writing to stdout")?;
         written += 1;
         Ok(())
     })?;
+    if let Some(m) = mcap {
+        m.finish()?;
+    }
     anyhow::ensure!(written > 0 || failed, "no frame to inspect");
     Ok(exit_code(failed))
 }
