@@ -164,3 +164,44 @@ fn the_shipped_foxglove_layout_is_json_and_shows_only_topics_we_write() {
     }
     assert_eq!(layout["configById"]["3D!rover"]["followTf"], "base_link");
 }
+
+#[test]
+fn run_mcap_writes_every_frame_and_refuses_a_file_it_cannot_write() {
+    let exe = env!("CARGO_BIN_EXE_rover-terrain");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run.mcap");
+    let verdicts = |o: &std::process::Output| {
+        String::from_utf8_lossy(&o.stdout)
+            .lines()
+            .filter(|l| l.contains("\"type\":\"verdict\""))
+            .count()
+    };
+    let ok = std::process::Command::new(exe)
+        .args(["run", "--mcap"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    // The bundled fixtures: 20 frames, each written, then the final stop verdict.
+    let bytes = std::fs::read(&out).unwrap();
+    let summary = mcap::Summary::read(&bytes).unwrap().unwrap();
+    let stats = summary.stats.unwrap();
+    assert_eq!(stats.channel_message_counts.len(), 7);
+    assert!(
+        stats.channel_message_counts.values().all(|&n| n == 20),
+        "{stats:?}"
+    );
+    assert_eq!(verdicts(&ok), 21);
+    // A file that cannot be written is refused at the start, naming it.
+    let full = std::process::Command::new(exe)
+        .args(["run", "--mcap", "/dev/full"])
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&full.stderr);
+    assert!(!full.status.success(), "{log}");
+    assert!(log.contains("/dev/full: writing MCAP"), "{log}");
+}

@@ -1,7 +1,8 @@
 //! The whole service, once warm, allocates nothing per frame: camera thread (replaying
 //! from memory), analysis, link thread writing COBS frames to a real pseudo-terminal,
 //! heartbeats, watchdog pings to a real notify socket, and the controller's odometry
-//! coming back on the pty into the terrain memory. A counting global allocator
+//! coming back on the pty into the terrain memory, and a viewer writing every frame
+//! into an MCAP file (`run --mcap`) beside it. A counting global allocator
 //! watches 45 frames (1.5 s) after a warm-up of 15.
 
 use std::io::Read;
@@ -53,6 +54,9 @@ fn the_running_service_allocates_nothing_per_frame() {
         baud: 115_200,
         faults: Faults::default(),
         frames: None,
+        // A viewer writing an MCAP file of every frame: its thread builds pictures
+        // (allocating, not counted); what the analysis hands it must not allocate.
+        mcap: Some(dir.path().join("run.mcap")),
     };
     let (stop_tx, stop_rx) = crossbeam_channel::bounded::<()>(1);
 
@@ -131,6 +135,13 @@ fn the_running_service_allocates_nothing_per_frame() {
     drop(slave);
 
     assert_eq!(summary.reason, StopReason::Signal);
+    let written = summary.viewer_written.expect("the viewer ran");
+    assert!(
+        written + summary.viewer_dropped >= summary.analysed && written >= 10,
+        "every analysed frame written or counted dropped: {written} + {} of {}",
+        summary.viewer_dropped,
+        summary.analysed
+    );
     assert!(summary.analysed >= (WARM_UP + WATCHED) as u64);
     assert!(
         heartbeats >= 5,

@@ -29,6 +29,11 @@ pub struct Args {
     /// Stop after this many frames analysed.
     #[arg(long)]
     frames: Option<u64>,
+    /// Also write what the analysis saw into this MCAP file for Foxglove (as
+    /// `analyze --mcap`), from a viewer thread off the hot path: frames it cannot keep
+    /// up with are dropped from the file (counted), never from the link.
+    #[arg(long)]
+    mcap: Option<PathBuf>,
     /// Replay a recording in a loop (sets `[service] loop_replay`).
     #[arg(long = "loop")]
     looping: bool,
@@ -67,6 +72,7 @@ pub fn run(args: Args, mut config: Config) -> anyhow::Result<ExitCode> {
         options.baud = b;
     }
     options.frames = args.frames;
+    options.mcap = args.mcap;
     options.faults = Faults {
         stall: args.inject_stall.as_deref().map(parse_stall).transpose()?,
         disconnect_at: args.inject_disconnect,
@@ -125,6 +131,12 @@ fn run_service(options: service::Options) -> anyhow::Result<ExitCode> {
         summary.link_failures,
         summary.latency
     );
+    if let Some(n) = summary.viewer_written {
+        log::info!(
+            "viewer: {n} frames written, {} pictures dropped (the viewer was behind)",
+            summary.viewer_dropped
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }
 

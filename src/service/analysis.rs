@@ -41,6 +41,8 @@ pub(super) struct Stage {
     analysed: u64,
     unknown_sent: u64,
     link_dropped: u64,
+    /// Where pictures of the analysis go (`run --mcap`), off the hot path.
+    viewer: Option<super::viewer::Viewer>,
 }
 
 /// What the stage counted over a run.
@@ -51,6 +53,8 @@ pub(super) struct Counts {
     pub unknown_sent: u64,
     /// Verdicts the link queue could not take.
     pub link_dropped: u64,
+    /// The viewer's outcome: frames it wrote, or why it stopped.
+    pub viewer: Option<Result<u64, crate::Error>>,
 }
 
 impl Stage {
@@ -84,7 +88,14 @@ impl Stage {
             analysed: 0,
             unknown_sent: 0,
             link_dropped: 0,
+            viewer: None,
         }
+    }
+
+    /// Also hand every analysed frame to `viewer`.
+    pub fn with_viewer(mut self, viewer: Option<super::viewer::Viewer>) -> Self {
+        self.viewer = viewer;
+        self
     }
 
     /// Analyse frames from `ready` until the recording ends, the frame limit is
@@ -131,6 +142,9 @@ impl Stage {
             .process_moved(&slot.frame, motion)
             .map(|v| wire::to_wire(v, 0.0));
         let process = t0.elapsed();
+        if let (Some(v), true) = (&self.viewer, outcome.is_ok()) {
+            v.offer(&slot.frame, &self.pipeline);
+        }
         let arrived = slot.arrived;
         let frame_seq = slot.frame.seq;
         let _ = self.free_tx.send(slot);
@@ -234,6 +248,7 @@ impl Stage {
             analysed: self.analysed,
             unknown_sent: self.unknown_sent,
             link_dropped: self.link_dropped,
+            viewer: self.viewer.take().map(super::viewer::Viewer::finish),
         }
     }
 }

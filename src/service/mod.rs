@@ -26,6 +26,7 @@ mod camera;
 mod histogram;
 mod link;
 pub mod notify;
+mod viewer;
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::Arc;
@@ -62,6 +63,9 @@ pub struct Options {
     pub faults: Faults,
     /// Stop after this many frames analysed.
     pub frames: Option<u64>,
+    /// Also write what the analysis saw into this MCAP file (a viewer thread, off
+    /// the hot path; pictures it cannot keep up with are dropped, never verdicts).
+    pub mcap: Option<std::path::PathBuf>,
 }
 
 impl Options {
@@ -80,6 +84,7 @@ impl Options {
             baud,
             faults: Faults::default(),
             frames: None,
+            mcap: None,
         })
     }
 }
@@ -123,6 +128,10 @@ pub struct Summary {
     pub link_dropped: u64,
     /// Frame arrival to verdict bytes written on the link, over the whole run.
     pub latency: Percentiles,
+    /// Frames the viewer wrote (`run --mcap`), `None` without one.
+    pub viewer_written: Option<u64>,
+    /// Pictures the viewer was too slow for.
+    pub viewer_dropped: u64,
 }
 
 /// Counters shared by the three threads.
@@ -139,6 +148,8 @@ struct Counters {
     memory_fused: AtomicBool,
     /// Odometry messages received from the controller.
     odometry_in: AtomicU64,
+    /// Pictures the viewer was too slow for (`run --mcap`).
+    viewer_dropped: AtomicU64,
 }
 
 fn bump(c: &AtomicU64) -> u64 {
@@ -178,6 +189,10 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
         odometry_rx,
         handle: link_handle,
     } = link::start(&options.link, options.baud, config, notifier, &counters)?;
+    let viewer = match &options.mcap {
+        Some(path) => Some(viewer::Viewer::start(path, &pipeline, &counters)?),
+        None => None,
+    };
     let mut stage = analysis::Stage::new(
         pipeline,
         config,
@@ -185,7 +200,8 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
         Arc::clone(&counters),
         (link_tx, odometry_rx),
         camera.free_tx.clone(),
-    );
+    )
+    .with_viewer(viewer);
     let reason = stage.run(&camera.ready_rx, &shutdown);
 
     log::info!("stopping: {reason:?}");
@@ -200,6 +216,14 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
         .handle
         .join()
         .map_err(|_| Error::Setup("the camera thread panicked".into()))?;
+    let viewer_written = match stage.viewer {
+        Some(Ok(n)) => Some(n),
+        Some(Err(e)) => {
+            log::error!("the viewer stopped: {e}");
+            Some(0)
+        }
+        None => None,
+    };
     Ok(Summary {
         reason,
         frames_in: get(&counters.frames_in),
@@ -213,5 +237,7 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
         link_failures: link_report.failures,
         link_dropped: stage.link_dropped + link_report.dropped,
         latency: link_report.latency,
+        viewer_written,
+        viewer_dropped: get(&counters.viewer_dropped),
     })
 }
