@@ -130,31 +130,17 @@ impl FakeCamera {
         } else {
             Vec::new()
         };
-        Ok(FakeCamera {
+        Ok(Self::replaying(
             source,
-            label: format!("fake:{}", path.display()),
-            next: 0,
-            seq: 0,
-            looping: false,
-            scratch: Vec::new(),
-            last: None,
-            pace: Pace::AsFastAsPossible,
-            faults: Faults::default(),
-            calls: 0,
-            stalled: 0,
-            started: None,
-            cache: None,
+            format!("fake:{}", path.display()),
             odometry,
-        })
+        ))
     }
 
-    /// Open a ROS 2 bag's depth topic (see [`crate::ros2::Bag::open`]): replayed like
-    /// any recording, paced by its messages' log times.
-    pub fn open_bag(path: &Path, topic: Option<&str>) -> Result<Self, DriverError> {
-        let bag = crate::ros2::Bag::open(path, topic)?;
-        let label = format!("mcap:{}#{}", path.display(), bag.topic());
-        Ok(FakeCamera {
-            source: Source::Bag(Box::new(bag)),
+    /// A camera at the start of `source`, as fast as asked, no faults.
+    fn replaying(source: Source, label: String, odometry: Vec<Option<[u8; 8]>>) -> Self {
+        FakeCamera {
+            source,
             label,
             next: 0,
             seq: 0,
@@ -167,8 +153,20 @@ impl FakeCamera {
             stalled: 0,
             started: None,
             cache: None,
-            odometry: Vec::new(),
-        })
+            odometry,
+        }
+    }
+
+    /// Open a ROS 2 bag's depth topic (see [`crate::ros2::Bag::open`]): replayed like
+    /// any recording, paced by its messages' log times.
+    pub fn open_bag(path: &Path, topic: Option<&str>) -> Result<Self, DriverError> {
+        let bag = crate::ros2::Bag::open(path, topic)?;
+        let label = format!("mcap:{}#{}", path.display(), bag.topic());
+        Ok(Self::replaying(
+            Source::Bag(Box::new(bag)),
+            label,
+            Vec::new(),
+        ))
     }
 
     /// Decode every frame now and replay from memory, so that delivering a frame is a

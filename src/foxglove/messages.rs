@@ -35,12 +35,24 @@ pub fn timestamp(seconds: f64) -> Timestamp {
     Timestamp::new(sec as u32, (((s - sec) * 1e9) as u32).min(999_999_999))
 }
 
-fn field(name: &str, offset: u32, kind: NumericType) -> PackedElementField {
-    PackedElementField {
-        name: name.into(),
-        offset,
-        r#type: kind as i32,
-    }
+/// Packed fields, each right after the last (float32 4 bytes, uint8 1), then `red`,
+/// `green`, `blue` and `alpha` (uint8).
+fn fields_then_rgba(leading: &[(&str, NumericType)]) -> Vec<PackedElementField> {
+    let rgba = ["red", "green", "blue", "alpha"].map(|c| (c, NumericType::Uint8));
+    let mut offset = 0;
+    leading
+        .iter()
+        .chain(&rgba)
+        .map(|&(name, kind)| {
+            let f = PackedElementField {
+                name: name.into(),
+                offset,
+                r#type: kind as i32,
+            };
+            offset += if kind == NumericType::Float32 { 4 } else { 1 };
+            f
+        })
+        .collect()
 }
 
 fn identity() -> Pose {
@@ -88,15 +100,11 @@ pub fn cloud(scene: &Scene<'_>, stamp: Timestamp, frames: &Frames) -> PointCloud
         frame_id: frames.base.clone(),
         pose: Some(identity()),
         point_stride: CLOUD_STRIDE as u32,
-        fields: vec![
-            field("x", 0, NumericType::Float32),
-            field("y", 4, NumericType::Float32),
-            field("z", 8, NumericType::Float32),
-            field("red", 12, NumericType::Uint8),
-            field("green", 13, NumericType::Uint8),
-            field("blue", 14, NumericType::Uint8),
-            field("alpha", 15, NumericType::Uint8),
-        ],
+        fields: fields_then_rgba(&[
+            ("x", NumericType::Float32),
+            ("y", NumericType::Float32),
+            ("z", NumericType::Float32),
+        ]),
         data: data.into(),
     }
 }
@@ -175,15 +183,11 @@ pub fn grid(scene: &Scene<'_>, stamp: Timestamp, frames: &Frames) -> Grid {
         }),
         row_stride: (s.nx * GRID_STRIDE) as u32,
         cell_stride: GRID_STRIDE as u32,
-        fields: vec![
-            field("height", 0, NumericType::Float32),
-            field("view", 4, NumericType::Uint8),
-            field("class", 5, NumericType::Uint8),
-            field("red", 6, NumericType::Uint8),
-            field("green", 7, NumericType::Uint8),
-            field("blue", 8, NumericType::Uint8),
-            field("alpha", 9, NumericType::Uint8),
-        ],
+        fields: fields_then_rgba(&[
+            ("height", NumericType::Float32),
+            ("view", NumericType::Uint8),
+            ("class", NumericType::Uint8),
+        ]),
         data: data.into(),
     }
 }
@@ -309,5 +313,30 @@ pub fn camera_transform(
             z: q.k,
             w: q.w,
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn packed_fields_follow_each_other_and_end_at_the_strides() {
+        let f = fields_then_rgba(&[("x", NumericType::Float32), ("v", NumericType::Uint8)]);
+        let at: Vec<(&str, u32)> = f.iter().map(|f| (f.name.as_str(), f.offset)).collect();
+        assert_eq!(
+            at,
+            [
+                ("x", 0),
+                ("v", 4),
+                ("red", 5),
+                ("green", 6),
+                ("blue", 7),
+                ("alpha", 8)
+            ]
+        );
+        assert_eq!(timestamp(12.25), Timestamp::new(12, 250_000_000));
+        assert_eq!(timestamp(f64::NAN), Timestamp::new(0, 0));
+        assert_eq!(timestamp(-3.0), Timestamp::new(0, 0));
     }
 }

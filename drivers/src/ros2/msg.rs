@@ -324,33 +324,50 @@ impl Image {
         for px in frame.pixels() {
             data.extend_from_slice(&px.to_le_bytes());
         }
-        Image {
-            header: Header {
-                stamp,
-                frame_id: frame_id.into(),
-            },
-            height: frame.height() as u32,
-            width: frame.width() as u32,
-            encoding: "16UC1".into(),
-            is_bigendian: 0,
-            step: 2 * frame.width() as u32,
+        Self::packed(
+            (frame.width(), frame.height()),
+            "16UC1",
+            2,
             data,
-        }
+            stamp,
+            frame_id,
+        )
     }
 
     /// An `rgb8` image of `frame`, stamped `stamp` in `frame_id`.
     pub fn from_colour(frame: &ColourFrame, stamp: Time, frame_id: &str) -> Self {
+        let data = frame.rgb().to_vec();
+        Self::packed(
+            (frame.width(), frame.height()),
+            "rgb8",
+            3,
+            data,
+            stamp,
+            frame_id,
+        )
+    }
+
+    /// A little-endian image of `size` (width, height) with rows packed (step =
+    /// width × bytes per pixel).
+    fn packed(
+        (width, height): (usize, usize),
+        encoding: &str,
+        bytes_per_pixel: usize,
+        data: Vec<u8>,
+        stamp: Time,
+        frame_id: &str,
+    ) -> Self {
         Image {
             header: Header {
                 stamp,
                 frame_id: frame_id.into(),
             },
-            height: frame.height() as u32,
-            width: frame.width() as u32,
-            encoding: "rgb8".into(),
+            height: height as u32,
+            width: width as u32,
+            encoding: encoding.into(),
             is_bigendian: 0,
-            step: 3 * frame.width() as u32,
-            data: frame.rgb().to_vec(),
+            step: (bytes_per_pixel * width) as u32,
+            data,
         }
     }
 }
