@@ -205,3 +205,18 @@ fn run_mcap_writes_every_frame_and_refuses_a_file_it_cannot_write() {
     assert!(!full.status.success(), "{log}");
     assert!(log.contains("/dev/full: writing MCAP"), "{log}");
 }
+
+#[cfg(not(feature = "foxglove-live"))]
+#[test]
+fn run_foxglove_without_the_feature_says_how_to_get_it() {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_rover-terrain"))
+        .args(["run", "--frames", "1", "--foxglove"])
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{log}");
+    assert!(
+        log.contains("127.0.0.1:8765") && log.contains("--features foxglove-live"),
+        "{log}"
+    );
+}

@@ -57,6 +57,7 @@ fn the_running_service_allocates_nothing_per_frame() {
         // A viewer writing an MCAP file of every frame: its thread builds pictures
         // (allocating, not counted); what the analysis hands it must not allocate.
         mcap: Some(dir.path().join("run.mcap")),
+        foxglove: None,
     };
     let (stop_tx, stop_rx) = crossbeam_channel::bounded::<()>(1);
 

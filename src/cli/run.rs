@@ -34,6 +34,10 @@ pub struct Args {
     /// up with are dropped from the file (counted), never from the link.
     #[arg(long)]
     mcap: Option<PathBuf>,
+    /// Serve the analysis live to Foxglove on HOST:PORT (default 127.0.0.1:8765) over
+    /// its WebSocket protocol, the same channels as --mcap (feature `foxglove-live`).
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = "127.0.0.1:8765")]
+    foxglove: Option<String>,
     /// Replay a recording in a loop (sets `[service] loop_replay`).
     #[arg(long = "loop")]
     looping: bool,
@@ -73,6 +77,7 @@ pub fn run(args: Args, mut config: Config) -> anyhow::Result<ExitCode> {
     }
     options.frames = args.frames;
     options.mcap = args.mcap;
+    options.foxglove = args.foxglove;
     options.faults = Faults {
         stall: args.inject_stall.as_deref().map(parse_stall).transpose()?,
         disconnect_at: args.inject_disconnect,

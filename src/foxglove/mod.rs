@@ -15,6 +15,8 @@
 //! module only names the channels and writes them (the `mcap` crate, through
 //! [`McapFile`]).
 
+#[cfg(feature = "foxglove-live")]
+pub mod live;
 pub mod messages;
 
 use std::path::Path;
@@ -56,36 +58,65 @@ pub const TOPIC_TF: &str = "/tf";
 /// The verdict's JSON schema.
 pub const VERDICT_SCHEMA: &str = include_str!("verdict.schema.json");
 
-/// The channel ids of one output file.
-#[derive(Debug, Clone, Copy)]
-struct Channels {
-    depth: u16,
-    info: u16,
-    verdict: u16,
-    cloud: u16,
-    grid: u16,
-    scene: u16,
-    tf: u16,
+/// How many channels a frame is published on.
+pub const CHANNELS: usize = 7;
+
+/// One channel: its topic, schema (name, encoding, data) and message encoding.
+#[derive(Debug, Clone)]
+pub struct ChannelSpec {
+    /// The topic.
+    pub topic: &'static str,
+    /// Schema name.
+    pub schema_name: String,
+    /// Schema encoding: `ros2msg`, `jsonschema` or `protobuf`.
+    pub schema_encoding: String,
+    /// The schema itself.
+    pub schema: Vec<u8>,
+    /// Message encoding: `cdr`, `json` or `protobuf`.
+    pub message_encoding: String,
 }
 
-/// An MCAP file of analysed frames.
-#[derive(Debug)]
-pub struct McapOut {
-    file: McapFile,
-    channels: Channels,
-    frames: Frames,
-    written: u64,
-}
-
-/// A protobuf channel for the Foxglove message type `T`.
-fn protobuf_channel<T: Encode>(file: &mut McapFile, topic: &str) -> Result<u16, Error> {
+/// A channel for the Foxglove protobuf message type `T`.
+fn protobuf<T: Encode>(topic: &'static str) -> Result<ChannelSpec, Error> {
     let schema = T::get_schema()
         .ok_or_else(|| Error::Setup(format!("{topic}: the foxglove crate gave no schema")))?;
-    Ok(file.channel(
+    Ok(ChannelSpec {
         topic,
-        (&schema.name, &schema.encoding, &schema.data),
-        &T::get_message_encoding(),
-    )?)
+        schema_name: schema.name,
+        schema_encoding: schema.encoding,
+        schema: schema.data.into_owned(),
+        message_encoding: T::get_message_encoding(),
+    })
+}
+
+/// The channels of a frame, in the order of [`payloads`].
+pub fn channels() -> Result<[ChannelSpec; CHANNELS], Error> {
+    let ros = |topic, name: &str, def: String| ChannelSpec {
+        topic,
+        schema_name: name.into(),
+        schema_encoding: msg::SCHEMA_ENCODING.into(),
+        schema: def.into_bytes(),
+        message_encoding: msg::MESSAGE_ENCODING.into(),
+    };
+    Ok([
+        ros(TOPIC_DEPTH, msg::IMAGE, msg::image_msgdef()),
+        ros(
+            TOPIC_CAMERA_INFO,
+            msg::CAMERA_INFO,
+            msg::camera_info_msgdef(),
+        ),
+        ChannelSpec {
+            topic: TOPIC_VERDICT,
+            schema_name: "rover_terrain.Verdict".into(),
+            schema_encoding: "jsonschema".into(),
+            schema: VERDICT_SCHEMA.as_bytes().to_vec(),
+            message_encoding: "json".into(),
+        },
+        protobuf::<foxglove::messages::PointCloud>(TOPIC_CLOUD)?,
+        protobuf::<foxglove::messages::Grid>(TOPIC_GRID)?,
+        protobuf::<foxglove::messages::SceneUpdate>(TOPIC_SCENE)?,
+        protobuf::<foxglove::messages::FrameTransform>(TOPIC_TF)?,
+    ])
 }
 
 fn encoded<T: Encode>(msg: &T) -> Result<Vec<u8>, Error> {
@@ -95,76 +126,71 @@ fn encoded<T: Encode>(msg: &T) -> Result<Vec<u8>, Error> {
     Ok(buf)
 }
 
+/// One analysed frame's messages, in the order of [`channels`]: its depth image and
+/// calibration, its verdict (the JSON `analyze` prints), cloud, grid, drawing and
+/// camera transform, all stamped with the frame's own time.
+pub fn payloads(
+    frame: &DepthFrame,
+    scene: &Scene<'_>,
+    verdict: &serde_json::Value,
+    frames: &Frames,
+) -> Result<[Vec<u8>; CHANNELS], Error> {
+    let t = frame.timestamp_s;
+    let stamp = messages::timestamp(t);
+    let ros_stamp = msg::Time::from_secs(t);
+    let image = Image::from_depth(frame, ros_stamp, &frames.camera);
+    let k = scene.config.intrinsics_for(frame.width(), frame.height());
+    let info = CameraInfo::pinhole(&k, ros_stamp, &frames.camera);
+    Ok([
+        msg::encode(&image),
+        msg::encode(&info),
+        verdict.to_string().into_bytes(),
+        encoded(&messages::cloud(scene, stamp, frames))?,
+        encoded(&messages::grid(scene, stamp, frames))?,
+        encoded(&messages::scene_update(scene, stamp, frames))?,
+        encoded(&messages::camera_transform(scene.config, stamp, frames))?,
+    ])
+}
+
+/// An MCAP file of analysed frames.
+#[derive(Debug)]
+pub struct McapOut {
+    file: McapFile,
+    channels: [u16; CHANNELS],
+    frames: Frames,
+    written: u64,
+}
+
 impl McapOut {
     /// Create `path` (replacing it), its messages in the TF frames `frames`.
     pub fn create(path: &Path, frames: Frames) -> Result<Self, Error> {
         let mut file = McapFile::create(path, "")?;
-        let image = msg::image_msgdef();
-        let info = msg::camera_info_msgdef();
-        let channels = Channels {
-            depth: file.channel(
-                TOPIC_DEPTH,
-                (msg::IMAGE, msg::SCHEMA_ENCODING, image.as_bytes()),
-                msg::MESSAGE_ENCODING,
-            )?,
-            info: file.channel(
-                TOPIC_CAMERA_INFO,
-                (msg::CAMERA_INFO, msg::SCHEMA_ENCODING, info.as_bytes()),
-                msg::MESSAGE_ENCODING,
-            )?,
-            verdict: file.channel(
-                TOPIC_VERDICT,
-                (
-                    "rover_terrain.Verdict",
-                    "jsonschema",
-                    VERDICT_SCHEMA.as_bytes(),
-                ),
-                "json",
-            )?,
-            cloud: protobuf_channel::<foxglove::messages::PointCloud>(&mut file, TOPIC_CLOUD)?,
-            grid: protobuf_channel::<foxglove::messages::Grid>(&mut file, TOPIC_GRID)?,
-            scene: protobuf_channel::<foxglove::messages::SceneUpdate>(&mut file, TOPIC_SCENE)?,
-            tf: protobuf_channel::<foxglove::messages::FrameTransform>(&mut file, TOPIC_TF)?,
-        };
+        let mut ids = [0u16; CHANNELS];
+        for (id, c) in ids.iter_mut().zip(channels()?) {
+            *id = file.channel(
+                c.topic,
+                (&c.schema_name, &c.schema_encoding, &c.schema),
+                &c.message_encoding,
+            )?;
+        }
         Ok(McapOut {
             file,
-            channels,
+            channels: ids,
             frames,
             written: 0,
         })
     }
 
-    /// Write one analysed frame: its depth image and calibration, its verdict (the
-    /// JSON `analyze` prints), cloud, grid, drawing and camera transform, all stamped
-    /// with the frame's own time.
+    /// Write one analysed frame (see [`payloads`]).
     pub fn write(
         &mut self,
         frame: &DepthFrame,
         scene: &Scene<'_>,
         verdict: &serde_json::Value,
     ) -> Result<(), Error> {
-        let t = frame.timestamp_s;
-        let stamp = messages::timestamp(t);
-        let ros_stamp = msg::Time::from_secs(t);
-        let c = self.channels;
-        let f = &self.frames;
-        let image = Image::from_depth(frame, ros_stamp, &f.camera);
-        let k = scene.config.intrinsics_for(frame.width(), frame.height());
-        let info = CameraInfo::pinhole(&k, ros_stamp, &f.camera);
-        let out: [(u16, Vec<u8>); 7] = [
-            (c.depth, msg::encode(&image)),
-            (c.info, msg::encode(&info)),
-            (c.verdict, verdict.to_string().into_bytes()),
-            (c.cloud, encoded(&messages::cloud(scene, stamp, f))?),
-            (c.grid, encoded(&messages::grid(scene, stamp, f))?),
-            (c.scene, encoded(&messages::scene_update(scene, stamp, f))?),
-            (
-                c.tf,
-                encoded(&messages::camera_transform(scene.config, stamp, f))?,
-            ),
-        ];
-        for (channel, data) in out {
-            self.file.write(channel, t, &data)?;
+        let out = payloads(frame, scene, verdict, &self.frames)?;
+        for (&channel, data) in self.channels.iter().zip(out) {
+            self.file.write(channel, frame.timestamp_s, &data)?;
         }
         self.written += 1;
         Ok(())

@@ -66,6 +66,9 @@ pub struct Options {
     /// Also write what the analysis saw into this MCAP file (a viewer thread, off
     /// the hot path; pictures it cannot keep up with are dropped, never verdicts).
     pub mcap: Option<std::path::PathBuf>,
+    /// Also serve it live over the Foxglove WebSocket protocol on `HOST:PORT`
+    /// (feature `foxglove-live`; the same viewer thread).
+    pub foxglove: Option<String>,
 }
 
 impl Options {
@@ -85,6 +88,7 @@ impl Options {
             faults: Faults::default(),
             frames: None,
             mcap: None,
+            foxglove: None,
         })
     }
 }
@@ -189,9 +193,14 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
         odometry_rx,
         handle: link_handle,
     } = link::start(&options.link, options.baud, config, notifier, &counters)?;
-    let viewer = match &options.mcap {
-        Some(path) => Some(viewer::Viewer::start(path, &pipeline, &counters)?),
-        None => None,
+    let viewer = match (&options.mcap, &options.foxglove) {
+        (None, None) => None,
+        (path, live) => Some(viewer::Viewer::start(
+            path.as_deref(),
+            live.as_deref(),
+            &pipeline,
+            &counters,
+        )?),
     };
     let mut stage = analysis::Stage::new(
         pipeline,

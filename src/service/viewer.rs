@@ -1,5 +1,5 @@
-//! The viewer thread: what the analysis saw, for people (`run --mcap FILE`), off the
-//! hot path.
+//! The viewer thread: what the analysis saw, for people (`run --mcap FILE`, and
+//! `run --foxglove ADDR` live with the feature `foxglove-live`), off the hot path.
 //!
 //! The analysis stage copies each analysed frame (depth image, voxels, cells, verdict)
 //! into a snapshot from a pool allocated at start, and hands it over newest-wins: when
@@ -73,15 +73,38 @@ pub(super) struct Viewer {
 }
 
 impl Viewer {
-    /// Create `path` and start the viewer thread writing into it.
+    /// Start the viewer thread writing into the MCAP file `path` and/or serving live
+    /// on `live` (`HOST:PORT`).
     pub fn start(
-        path: &Path,
+        path: Option<&Path>,
+        live: Option<&str>,
         pipeline: &Pipeline,
         counters: &Arc<Counters>,
     ) -> Result<Self, Error> {
         let config = pipeline.config().clone();
         let spec = *pipeline.grid().spec();
-        let mut out = McapOut::create(path, Frames::of(&config))?;
+        let mut out = path
+            .map(|p| McapOut::create(p, Frames::of(&config)))
+            .transpose()?;
+        #[cfg(feature = "foxglove-live")]
+        let live = match live {
+            Some(addr) => {
+                let l = crate::foxglove::live::Live::start(addr, Frames::of(&config))?;
+                log::info!(
+                    "foxglove: serving the analysis live on ws://{}:{}",
+                    addr.rsplit_once(':').map_or(addr, |(h, _)| h),
+                    l.port()
+                );
+                Some(l)
+            }
+            None => None,
+        };
+        #[cfg(not(feature = "foxglove-live"))]
+        if let Some(addr) = live {
+            return Err(Error::Setup(format!(
+                "--foxglove {addr}: built without the live viewer: rebuild with `--features foxglove-live`"
+            )));
+        }
         let (ready_tx, ready_rx) = bounded::<Snapshot>(1);
         let (free_tx, free_rx) = bounded::<Snapshot>(POOL);
         for _ in 0..POOL {
@@ -92,6 +115,7 @@ impl Viewer {
             .name("viewer".into())
             .spawn(move || {
                 // Until the analysis stage hangs up: write each snapshot, give it back.
+                let mut written = 0u64;
                 for s in rx {
                     let scene = Scene {
                         config: &config,
@@ -102,11 +126,24 @@ impl Viewer {
                         verdict: &s.verdict,
                         memory: None,
                     };
-                    out.write(&s.frame, &scene, &s.verdict.to_json())?;
+                    let json = s.verdict.to_json();
+                    if let Some(out) = out.as_mut() {
+                        out.write(&s.frame, &scene, &json)?;
+                    }
+                    #[cfg(feature = "foxglove-live")]
+                    if let Some(l) = &live {
+                        l.publish(&s.frame, &scene, &json)?;
+                    }
+                    written += 1;
                     let _ = back.send(s);
                 }
-                let written = out.written();
-                out.finish()?;
+                #[cfg(feature = "foxglove-live")]
+                if let Some(l) = live {
+                    l.stop();
+                }
+                if let Some(out) = out {
+                    out.finish()?;
+                }
                 Ok(written)
             })
             .map_err(|e| Error::Setup(format!("cannot start the viewer thread: {e}")))?;
@@ -154,8 +191,8 @@ impl Viewer {
         }
     }
 
-    /// Let the viewer write what it holds, finish the file, and say how many frames
-    /// it wrote.
+    /// Let the viewer write what it holds, finish the file (stop serving), and say
+    /// how many frames it wrote.
     pub fn finish(self) -> Result<u64, Error> {
         let Viewer {
             ready_tx, handle, ..
@@ -179,7 +216,7 @@ mod tests {
         let frame = crate::sim::render(&crate::sim::Terrain::flat(), &Config::default());
         pipeline.process(&frame).unwrap();
         let counters = Arc::new(Counters::default());
-        let viewer = Viewer::start(&path, &pipeline, &counters).unwrap();
+        let viewer = Viewer::start(Some(&path), None, &pipeline, &counters).unwrap();
         const OFFERED: u64 = 60;
         for _ in 0..OFFERED {
             viewer.offer(&frame, &pipeline);

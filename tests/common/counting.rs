@@ -6,8 +6,9 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 /// Defers to the system allocator; counts `alloc` and `realloc` calls, except on
-/// the service's `viewer` thread (`run --mcap`: it builds pictures off the hot path
-/// and may allocate).
+/// the service's `viewer` thread (`run --mcap`, `--foxglove`: it builds pictures off
+/// the hot path and may allocate), threads whose names start with `viewer` (a test's
+/// Foxglove client), and the live server's tokio threads (`tokio-*`).
 pub struct Counting;
 
 thread_local! {
@@ -22,7 +23,9 @@ fn exempt() -> bool {
         .try_with(|e| match e.get() {
             0 => {
                 e.set(3);
-                let viewer = std::thread::current().name() == Some("viewer");
+                let viewer = std::thread::current()
+                    .name()
+                    .is_some_and(|n| n.starts_with("viewer") || n.starts_with("tokio-"));
                 e.set(if viewer { 1 } else { 2 });
                 viewer
             }
