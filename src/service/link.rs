@@ -301,13 +301,15 @@ impl LinkThread {
         let c = &self.counters;
         log::info!(
             "{fps:.1} fps; queue {q}; analysis {p}; link {l}; arrival→link {t}; \
-             dropped {} rejected {} camera timeouts {} reopens {}; link failures {} unsent {}",
+             dropped {} rejected {} camera timeouts {} reopens {}; link failures {} unsent {}; \
+             viewer pictures dropped {}",
             get(&c.dropped),
             get(&c.rejected),
             get(&c.camera_timeouts),
             get(&c.camera_reopens),
             self.link.failures(),
-            self.link.dropped()
+            self.link.dropped(),
+            get(&c.viewer_dropped)
         );
         self.notifier.status(format_args!(
             "{fps:.1} fps, latency p50 {:.1} ms p99 {:.1} ms, dropped {}, rejected {}, link failures {}",
