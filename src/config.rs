@@ -412,24 +412,21 @@ impl Config {
     /// (fx = w / 2 / tan(hfov / 2), principal point at the image centre).
     pub fn intrinsics_for(&self, width: usize, height: usize) -> rover_terrain_drivers::Intrinsics {
         let c = &self.camera;
-        let (w, h) = (width as f64, height as f64);
-        let pinhole = match self.pinhole() {
-            Some((fx, fy, cx, cy)) => {
-                let (sx, sy) = (w / f64::from(c.width), h / f64::from(c.height));
-                (fx * sx, fy * sy, cx * sx, cy * sy)
-            }
-            None => (
+        let (w, h) = (f64::from(c.width), f64::from(c.height));
+        let pinhole = self.pinhole().unwrap_or_else(|| {
+            (
                 w / 2.0 / (c.hfov_deg.to_radians() / 2.0).tan(),
                 h / 2.0 / (c.vfov_deg.to_radians() / 2.0).tan(),
                 w / 2.0,
                 h / 2.0,
-            ),
-        };
+            )
+        });
         rover_terrain_drivers::Intrinsics {
-            width,
-            height,
+            width: c.width as usize,
+            height: c.height as usize,
             pinhole: Some(pinhole),
         }
+        .scaled_to(width, height)
     }
 
     /// Whether the camera uses pinhole intrinsics rather than the FOV model.

@@ -70,6 +70,28 @@ pub struct Intrinsics {
     pub pinhole: Option<(f64, f64, f64, f64)>,
 }
 
+impl Intrinsics {
+    /// The same camera for `width × height` images (binned or resized): the pinhole
+    /// scaled along each axis. A size of 0 (uncalibrated size) scales nothing.
+    pub fn scaled_to(&self, width: usize, height: usize) -> Self {
+        let ratio = |to: usize, from: usize| {
+            if from > 0 {
+                to as f64 / from as f64
+            } else {
+                1.0
+            }
+        };
+        let (sx, sy) = (ratio(width, self.width), ratio(height, self.height));
+        Intrinsics {
+            width,
+            height,
+            pinhole: self
+                .pinhole
+                .map(|(fx, fy, cx, cy)| (fx * sx, fy * sy, cx * sx, cy * sy)),
+        }
+    }
+}
+
 /// What a live camera is asked to deliver (from the `[camera]` config section).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CameraOptions {
@@ -92,5 +114,28 @@ impl Default for CameraOptions {
             fps: 30,
             depth_scale_mm: 1.0,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn intrinsics_scale_with_the_image_and_an_unknown_size_scales_nothing() {
+        let k = Intrinsics {
+            width: 640,
+            height: 480,
+            pinhole: Some((580.0, 570.0, 320.0, 240.0)),
+        };
+        let half = k.scaled_to(320, 240);
+        assert_eq!((half.width, half.height), (320, 240));
+        assert_eq!(half.pinhole, Some((290.0, 285.0, 160.0, 120.0)));
+        let unknown = Intrinsics {
+            width: 0,
+            height: 0,
+            ..k
+        };
+        assert_eq!(unknown.scaled_to(320, 240).pinhole, k.pinhole);
     }
 }

@@ -55,7 +55,7 @@ pub enum Format {
 /// Where frames go: a fakenect session or a ROS 2 bag.
 enum Sink {
     Session(SessionWriter),
-    Bag(Box<BagWriter>, Intrinsics),
+    Bag(Box<BagWriter>, Option<Intrinsics>),
 }
 
 /// Record the camera into a fakenect session or a ROS 2 bag.
@@ -93,12 +93,12 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
                 odometry_link.is_none(),
                 "--odometry-link records into fakenect sessions only"
             );
-            // The source's own calibration, else the configured camera (sized to the
-            // first frame below).
-            let k = cam
-                .intrinsics()
-                .unwrap_or_else(|| config.intrinsics_for(0, 0));
-            Sink::Bag(Box::new(BagWriter::create(out, BagTopics::default())?), k)
+            // The source's own calibration, else the configured camera (sized to each
+            // frame below).
+            Sink::Bag(
+                Box::new(BagWriter::create(out, BagTopics::default())?),
+                cam.intrinsics(),
+            )
         }
     };
     let mut link = match &odometry_link {
@@ -131,11 +131,9 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         };
         let writer = match &mut sink {
             Sink::Session(w) => w,
-            Sink::Bag(w, k) => {
-                if (k.width, k.height) != (frame.width(), frame.height()) {
-                    *k = config.intrinsics_for(frame.width(), frame.height());
-                }
-                w.write_depth(&frame, t, k)?;
+            Sink::Bag(w, own) => {
+                let k = own.unwrap_or_else(|| config.intrinsics_for(frame.width(), frame.height()));
+                w.write_depth(&frame, t, &k)?;
                 if cam.next_colour(&mut colour)? {
                     w.write_colour(&colour, t)?;
                 }

@@ -106,23 +106,24 @@ pub struct Bag {
     stream: Option<Stream>,
 }
 
-impl Bag {
-    /// Open `path` and pick its depth topic: `topic` when given (it must be a
-    /// `sensor_msgs/msg/Image` topic in a depth encoding), else the only depth image
-    /// topic in the bag (several, or none, is an error listing the candidates).
-    pub fn open(path: &Path, topic: Option<&str>) -> Result<Self, DriverError> {
-        let bad = |what: String| DriverError::malformed(path, what);
-        if !path.is_file() {
-            return Err(DriverError::NotFound {
-                path: path.to_path_buf(),
-            });
-        }
-        let mut file = File::open(path).map_err(|e| DriverError::io(path, e))?;
+/// What one pass over a bag learned: its channels, and where it is damaged.
+#[derive(Debug, Default)]
+struct Scan {
+    channels: BTreeMap<u16, ChannelScan>,
+    damage: Option<String>,
+}
+
+impl Scan {
+    /// Read the whole file once (chunks decompressed): schemas, channels, message
+    /// times, the first image's encoding and size and the first calibration per
+    /// channel. An error ends the scan and is kept as the damage.
+    fn of(file: &mut File) -> Self {
         let mut schemas: BTreeMap<u16, String> = BTreeMap::new();
-        let mut channels: BTreeMap<u16, ChannelScan> = BTreeMap::new();
+        let mut scan = Scan::default();
+        let channels = &mut scan.channels;
         let mut parse_error = None;
         let mut reader = LinearReader::new();
-        let scanned = for_each_record(&mut file, &mut reader, |opcode, body| {
+        let read = for_each_record(file, &mut reader, |opcode, body| {
             if !matches!(opcode, op::SCHEMA | op::CHANNEL | op::MESSAGE) {
                 return ControlFlow::Continue(());
             }
@@ -160,130 +161,151 @@ impl Bag {
             }
             ControlFlow::Continue(())
         });
-        let damage = match (scanned, parse_error) {
+        scan.damage = match (read, parse_error) {
             (Err(e), _) | (_, Some(e)) => Some(e),
             _ => None,
         };
-        if let (Some(d), true) = (&damage, channels.is_empty()) {
-            return Err(bad(format!("not a readable MCAP file: {d}")));
+        scan
+    }
+
+    /// The image topics, described, for errors ("none" when there are none).
+    fn image_topics(&self) -> String {
+        let images: Vec<String> = self
+            .channels
+            .values()
+            .filter(|c| c.is_image())
+            .map(ChannelScan::describe)
+            .collect();
+        if images.is_empty() {
+            "none".into()
+        } else {
+            images.join(", ")
         }
-        let depth: Vec<(&u16, &ChannelScan)> = channels
+    }
+
+    /// The depth channel to read: `topic` when given (an Image topic in CDR in a depth
+    /// encoding), else the only depth image topic; why not, in words.
+    fn choose(&self, topic: Option<&str>, path: &Path) -> Result<(u16, &ChannelScan), String> {
+        if let Some(t) = topic {
+            let Some((&id, c)) = self.channels.iter().find(|(_, c)| c.topic == t) else {
+                return Err(format!(
+                    "no topic {t:?} in the bag; its image topics: {}",
+                    self.image_topics()
+                ));
+            };
+            if !c.is_image() {
+                return Err(format!(
+                    "topic {t} carries {} in {:?}, not {} in CDR",
+                    c.schema,
+                    c.message_encoding,
+                    msg::IMAGE
+                ));
+            }
+            if c.depth_encoding().is_none() {
+                return Err(format!(
+                    "topic {} is not a depth image topic (expected 16UC1, mono16 or 32FC1)",
+                    c.describe()
+                ));
+            }
+            return Ok((id, c));
+        }
+        let depth: Vec<(&u16, &ChannelScan)> = self
+            .channels
             .iter()
             .filter(|(_, c)| c.is_image() && c.depth_encoding().is_some())
             .collect();
-        let list = |v: &[(&u16, &ChannelScan)]| {
-            v.iter()
-                .map(|(_, c)| c.describe())
-                .collect::<Vec<_>>()
-                .join(", ")
+        match depth.as_slice() {
+            [(&id, c)] => Ok((id, c)),
+            [] => Err(format!(
+                "no depth image topic (16UC1, mono16 or 32FC1 {}); image topics: {}{}",
+                msg::IMAGE,
+                self.image_topics(),
+                self.damage
+                    .as_ref()
+                    .map(|d| format!("; the file is damaged: {d}"))
+                    .unwrap_or_default()
+            )),
+            many => Err(format!(
+                "{} depth image topics, pick one with mcap:{}#TOPIC: {}",
+                many.len(),
+                path.display(),
+                many.iter()
+                    .map(|(_, c)| c.describe())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )),
+        }
+    }
+
+    /// The calibration of `chosen`'s `width × height` images from the CameraInfo in
+    /// its namespace (`.../camera_info`), scaled if given for another size, and that
+    /// topic; `None` without one.
+    fn calibration(
+        &self,
+        chosen: &ChannelScan,
+        width: usize,
+        height: usize,
+    ) -> Result<Option<(Intrinsics, String)>, String> {
+        let info_topic = match chosen.topic.rsplit_once('/') {
+            Some((ns, _)) => format!("{ns}/camera_info"),
+            None => "camera_info".into(),
         };
-        let (&channel, chosen) = match topic {
-            Some(t) => {
-                let Some((id, c)) = channels.iter().find(|(_, c)| c.topic == t) else {
-                    let images: Vec<_> = channels.iter().filter(|(_, c)| c.is_image()).collect();
-                    return Err(bad(format!(
-                        "no topic {t:?} in the bag; its image topics: {}",
-                        if images.is_empty() {
-                            "none".into()
-                        } else {
-                            list(&images)
-                        }
-                    )));
-                };
-                if !c.is_image() {
-                    return Err(bad(format!(
-                        "topic {t} carries {} in {:?}, not {} in CDR",
-                        c.schema,
-                        c.message_encoding,
-                        msg::IMAGE
-                    )));
-                }
-                if c.depth_encoding().is_none() {
-                    return Err(bad(format!(
-                        "topic {} is not a depth image topic (expected 16UC1, mono16 or 32FC1)",
-                        c.describe()
-                    )));
-                }
-                (id, c)
-            }
-            None => match depth.as_slice() {
-                [one] => *one,
-                [] => {
-                    let images: Vec<_> = channels.iter().filter(|(_, c)| c.is_image()).collect();
-                    return Err(bad(format!(
-                        "no depth image topic (16UC1, mono16 or 32FC1 {}); image topics: {}{}",
-                        msg::IMAGE,
-                        if images.is_empty() {
-                            "none".into()
-                        } else {
-                            list(&images)
-                        },
-                        damage
-                            .as_ref()
-                            .map(|d| format!("; the file is damaged: {d}"))
-                            .unwrap_or_default()
-                    )));
-                }
-                many => {
-                    return Err(bad(format!(
-                        "{} depth image topics, pick one with mcap:{}#TOPIC: {}",
-                        many.len(),
-                        path.display(),
-                        list(many)
-                    )))
-                }
+        let info = self
+            .channels
+            .values()
+            .find(|c| c.topic == info_topic && c.schema == msg::CAMERA_INFO)
+            .and_then(|c| c.info.clone());
+        match info {
+            Some(Ok(info)) => match info.intrinsics() {
+                Ok(k) => Ok(Some((k.scaled_to(width, height), info_topic))),
+                Err(e) => Err(format!("{info_topic}: {e}")),
             },
-        };
+            Some(Err(e)) => Err(format!("{info_topic} message 0: {e}")),
+            None => Ok(None),
+        }
+    }
+}
+
+impl Bag {
+    /// Open `path` and pick its depth topic: `topic` when given (it must be a
+    /// `sensor_msgs/msg/Image` topic in a depth encoding), else the only depth image
+    /// topic in the bag (several, or none, is an error listing the candidates).
+    pub fn open(path: &Path, topic: Option<&str>) -> Result<Self, DriverError> {
+        let bad = |what: String| DriverError::malformed(path, what);
+        if !path.is_file() {
+            return Err(DriverError::NotFound {
+                path: path.to_path_buf(),
+            });
+        }
+        let mut file = File::open(path).map_err(|e| DriverError::io(path, e))?;
+        let scan = Scan::of(&mut file);
+        if let (Some(d), true) = (&scan.damage, scan.channels.is_empty()) {
+            return Err(bad(format!("not a readable MCAP file: {d}")));
+        }
+        let (channel, chosen) = scan.choose(topic, path).map_err(bad)?;
         let Some(Ok((_, width, height))) = chosen.first.clone() else {
             return Err(bad(format!(
                 "topic {}: its first message does not decode",
                 chosen.topic
             )));
         };
-        let info_topic = match chosen.topic.rsplit_once('/') {
-            Some((ns, _)) => format!("{ns}/camera_info"),
-            None => "camera_info".into(),
-        };
-        let info = channels
-            .values()
-            .find(|c| c.topic == info_topic && c.schema == msg::CAMERA_INFO)
-            .and_then(|c| c.info.clone());
-        let (pinhole, calibration) = match info {
-            Some(Ok(info)) => match info.intrinsics() {
-                Ok(k) => {
-                    let p = k.pinhole.map(|(fx, fy, cx, cy)| {
-                        // A calibration for another size (binning): scale it.
-                        let sx = if k.width > 0 {
-                            width as f64 / k.width as f64
-                        } else {
-                            1.0
-                        };
-                        let sy = if k.height > 0 {
-                            height as f64 / k.height as f64
-                        } else {
-                            1.0
-                        };
-                        (fx * sx, fy * sy, cx * sx, cy * sy)
-                    });
-                    (p, Some(info_topic))
-                }
-                Err(e) => return Err(bad(format!("{info_topic}: {e}"))),
+        let calibration = scan.calibration(chosen, width, height).map_err(bad)?;
+        let intrinsics = match &calibration {
+            Some((k, _)) => *k,
+            None => Intrinsics {
+                width,
+                height,
+                pinhole: None,
             },
-            Some(Err(e)) => return Err(bad(format!("{info_topic} message 0: {e}"))),
-            None => (None, None),
         };
         Ok(Bag {
             path: path.to_path_buf(),
             topic: chosen.topic.clone(),
             channel,
             times_ns: chosen.times_ns.clone(),
-            intrinsics: Intrinsics {
-                width,
-                height,
-                pinhole,
-            },
-            calibration,
-            damage,
+            intrinsics,
+            calibration: calibration.map(|(_, t)| t),
+            damage: scan.damage.clone(),
             stream: None,
         })
     }
