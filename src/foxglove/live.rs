@@ -89,12 +89,7 @@ impl Live {
         scene: &Scene<'_>,
         verdict: &serde_json::Value,
     ) -> Result<(), Error> {
-        let t = frame.timestamp_s;
-        let ns = if t.is_finite() && t > 0.0 {
-            (t * 1e9) as u64
-        } else {
-            0
-        };
+        let ns = rover_terrain_drivers::ros2::writer::nanos(frame.timestamp_s);
         let out = payloads(frame, scene, verdict, &self.frames)?;
         for (channel, data) in self.channels.iter().zip(out) {
             channel.log_with_meta(&data, PartialMetadata { log_time: Some(ns) });

@@ -12,6 +12,16 @@ use super::msg::{self, CameraInfo, Image, Time};
 use crate::camera::Intrinsics;
 use crate::{ColourFrame, DepthFrame, DriverError};
 
+/// `time_s` seconds since the epoch as MCAP's nanoseconds (negative and non-finite
+/// become 0).
+pub fn nanos(time_s: f64) -> u64 {
+    if time_s.is_finite() && time_s > 0.0 {
+        (time_s * 1e9) as u64
+    } else {
+        0
+    }
+}
+
 /// An MCAP file being written.
 pub struct McapFile {
     path: PathBuf,
@@ -76,11 +86,7 @@ impl McapFile {
     /// Write one message on `channel`, logged and published at `time_s` (seconds since
     /// the epoch; negative and non-finite become 0).
     pub fn write(&mut self, channel: u16, time_s: f64, data: &[u8]) -> Result<(), DriverError> {
-        let ns = if time_s.is_finite() && time_s > 0.0 {
-            (time_s * 1e9) as u64
-        } else {
-            0
-        };
+        let ns = nanos(time_s);
         self.sequence = self.sequence.wrapping_add(1);
         let header = mcap::records::MessageHeader {
             channel_id: channel,
