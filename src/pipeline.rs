@@ -176,10 +176,10 @@ impl Pipeline {
         v.voxels = self.grid.voxels().len() as u32;
         v.timing_us.bin = (t1 - t0).as_secs_f32() * 1e6;
         v.timing_us.voxels = (t2 - t1).as_secs_f32() * 1e6;
-        let cells = match &mut self.memory {
+        let (cells, remembered) = match &mut self.memory {
             None => {
                 v.memory = crate::verdict::MemoryUse::default();
-                self.grid.cells()
+                (self.grid.cells(), None)
             }
             Some(memory) => {
                 match motion {
@@ -195,13 +195,14 @@ impl Pipeline {
                     },
                     reason: motion.err().map(Untrusted::as_str),
                     remembered_cells: remembered,
+                    remembered_confidence: memory.mean_confidence(),
                     remembered_hazards: 0,
                 };
-                memory.cells()
+                (memory.cells(), Some(memory.confidence()))
             }
         };
         v.timing_us.memory = t2.elapsed().as_secs_f32() * 1e6;
-        self.analyzer.analyze(cells, self.grid.cut(), v);
+        self.analyzer.analyze(cells, remembered, self.grid.cut(), v);
         if let Some(memory) = &mut self.memory {
             v.memory.remembered_hazards = memory.carry_hazards(v);
         }

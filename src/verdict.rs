@@ -195,6 +195,10 @@ pub struct MemoryUse {
     pub reason: Option<&'static str>,
     /// Ground cells out of the camera's view that came from memory.
     pub remembered_cells: u32,
+    /// Their mean confidence, 0..=1: 1 for ground just seen from near, falling with
+    /// the travel and time since it was seen and with the range it was seen from (0
+    /// when none).
+    pub remembered_confidence: f32,
     /// Hazards out of the camera's view that came from memory.
     pub remembered_hazards: u32,
 }
@@ -295,6 +299,7 @@ impl Verdict {
                 "state": self.memory.state,
                 "reason": self.memory.reason,
                 "remembered_cells": self.memory.remembered_cells,
+                "remembered_confidence": r3(self.memory.remembered_confidence),
                 "remembered_hazards": self.memory.remembered_hazards,
             },
             "mount": {

@@ -255,6 +255,73 @@ fn an_obstacle_in_one_frame_only_is_gone_at_once() {
 }
 
 #[test]
+fn ground_remembered_long_ago_counts_less_until_it_is_forgotten() {
+    let config = Config::default();
+    let mut fused = Pipeline::new(config.clone()).unwrap();
+    let mut single = Pipeline::new(config.clone()).unwrap();
+    let flat = Terrain::flat();
+    // Drive 0.6 m in 5 cm steps over flat ground: the blind zone fills from memory.
+    let mut pose = Pose::default();
+    for k in 0..=12 {
+        pose.x = 0.05 * f64::from(k);
+        let frame = sim::render_from(&flat, &config, pose);
+        let motion = if k == 0 {
+            Err(Untrusted::NoOdometry)
+        } else {
+            Ok(Motion {
+                forward_m: 0.05,
+                dt_s: 0.1,
+                ..Motion::default()
+            })
+        };
+        fused.process_moved(&frame, motion).unwrap();
+    }
+    let frame = sim::render_from(&flat, &config, pose);
+    let alone = single.process(&frame).unwrap().clone();
+    // Parked, 5 s a frame: what was remembered loses weight with time, and so does
+    // the seen fraction, until max_age_s (30 s) forgets it.
+    let parked = Motion {
+        dt_s: 5.0,
+        ..Motion::default()
+    };
+    let mut last = fused.process_moved(&frame, Ok(parked)).unwrap().clone();
+    assert_eq!(last.decision, alone.decision);
+    assert!(last.memory.remembered_cells > 100, "{:?}", last.memory);
+    assert!(last.memory.remembered_confidence > 0.3, "{:?}", last.memory);
+    assert!(last.seen_fraction < alone.seen_fraction);
+    for _ in 0..4 {
+        let v = fused.process_moved(&frame, Ok(parked)).unwrap().clone();
+        assert_eq!(v.memory.remembered_cells, last.memory.remembered_cells);
+        assert!(
+            v.memory.remembered_confidence < last.memory.remembered_confidence - 0.1,
+            "{:?} after {:?}",
+            v.memory,
+            last.memory
+        );
+        assert!(v.seen_fraction < last.seen_fraction, "{v:?}");
+        assert_eq!(v.decision, alone.decision);
+        last = v;
+    }
+    for _ in 0..2 {
+        last = fused.process_moved(&frame, Ok(parked)).unwrap().clone();
+    }
+    // What is left is what the camera sees in part now (the image's edges), kept
+    // fresh by it: the blind zone is forgotten.
+    assert!(last.memory.remembered_cells > 0);
+    assert!(
+        last.memory.remembered_confidence > 0.99,
+        "{:?}",
+        last.memory
+    );
+    assert!(
+        (last.seen_fraction - alone.seen_fraction).abs() < 1e-3,
+        "{last:?}"
+    );
+    let again = fused.process_moved(&frame, Ok(parked)).unwrap().clone();
+    assert_eq!(again.memory, last.memory);
+}
+
+#[test]
 fn with_the_memory_off_the_verdicts_are_the_single_frames() {
     let mut config = Config::default();
     config.memory.enabled = false;
@@ -448,6 +515,15 @@ fn the_pictures_show_what_was_remembered_and_how_long_ago() {
     assert!(near > far && far > 0.0, "{near} {far}");
     // In view: not remembered.
     assert_eq!(travel(1.5), None);
+    // The pictures fade remembered cells by their confidence: the nearest, seen
+    // longest ago, the least.
+    let confidence = |x: f32| {
+        let (ix, iy) = spec.cell_at(x, 0.45).unwrap();
+        scene.remembered_confidence(ix, iy)
+    };
+    let (near, far) = (confidence(0.12).unwrap(), confidence(0.52).unwrap());
+    assert!(near < far && far < 1.0, "{near} {far}");
+    assert_eq!(confidence(1.5), None);
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("topdown.png");
     std::fs::write(&png, rover_terrain::inspect::topdown::draw(&scene).png()).unwrap();

@@ -258,14 +258,27 @@ impl Analyzer {
     /// frame's horizon cut into `verdict` (decision, feature, hazards, seen
     /// fraction, tilt, crossing and feature timings): what was seen and what could
     /// not be, the crossing tests, the decision, and for a go the feature.
-    pub fn analyze(&mut self, cells: &[Cell], cut: &[bool], verdict: &mut Verdict) {
+    ///
+    /// `remembered`: for fused cells, each cell's confidence when it came from the
+    /// terrain memory (0 when it is the frame's). Remembered cells out of the camera's
+    /// view then count in the seen fraction and the too-little-seen rule, each by its
+    /// confidence: ground seen long ago or from far weighs less than ground seen now.
+    pub fn analyze(
+        &mut self,
+        cells: &[Cell],
+        remembered: Option<&[f32]>,
+        cut: &[bool],
+        verdict: &mut Verdict,
+    ) {
         let t0 = Instant::now();
         verdict.hazards.clear();
         verdict.feature = None;
         let (seen_expected, nearest_unseen) = self.mark_seen(cells);
-        verdict.seen_fraction = seen_expected as f32 / self.fixed.expected_count as f32;
+        let (known, counted) = self.remembered_weight(cells, remembered);
+        let seen_weight = seen_expected as f32 + known;
+        verdict.seen_fraction = seen_weight / (self.fixed.expected_count + counted) as f32;
         self.mark_past(cut);
-        let visible = self.fixed.expected_count - self.mark_hidden(cells);
+        let visible = self.fixed.expected_count - self.mark_hidden(cells) + counted;
         verdict.seen_to_m = self.seen_to();
         let frame = Frame::new(&self.fixed, &self.view, cells);
         let scratch = &mut self.scratch;
@@ -287,7 +300,7 @@ impl Analyzer {
         let seen_of_visible = if visible == 0 {
             0.0
         } else {
-            seen_expected as f32 / visible as f32
+            seen_weight / visible as f32
         };
         let too_little = seen_of_visible < frame.cfg.analysis.min_seen_fraction as f32;
         decide(verdict, too_little, nearest_unseen);
@@ -320,6 +333,25 @@ impl Analyzer {
             }
         }
         (seen_expected, nearest_unseen)
+    }
+
+    /// The remembered cells out of the camera's view that the analysis uses: their
+    /// summed confidence and how many they are.
+    fn remembered_weight(&self, cells: &[Cell], remembered: Option<&[f32]>) -> (f32, usize) {
+        let Some(confidence) = remembered else {
+            return (0.0, 0);
+        };
+        let fx = &self.fixed;
+        let min_pts = fx.cfg.analysis.min_points_per_cell;
+        let mut sum = 0.0f32;
+        let mut n = 0usize;
+        for (i, (&k, c)) in confidence.iter().zip(cells).enumerate() {
+            if k > 0.0 && !fx.expected[i] && c.n >= min_pts {
+                sum += k;
+                n += 1;
+            }
+        }
+        (sum, n)
     }
 
     /// Past the sensor's horizon: a cell the image's top edge cuts (`cut`), every
@@ -389,4 +421,69 @@ fn decide(verdict: &mut Verdict, too_little: bool, nearest_unseen: f32) {
     } else {
         Decision::Go
     };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Flat ground in every cell the camera sees whole, and in `extra` cells out of
+    /// its view (the blind zone, as the terrain memory would fill it).
+    fn flat(spec: &GridSpec, expected: &[bool], extra: usize) -> Vec<Cell> {
+        let mut filled = 0;
+        (0..spec.cell_count())
+            .map(|i| {
+                let fill = expected[i] || {
+                    filled += 1;
+                    filled <= extra
+                };
+                let (x, y) = (spec.x_centre(i / spec.ny), spec.y_centre(i % spec.ny));
+                if fill {
+                    Cell {
+                        n: 20,
+                        x,
+                        y,
+                        z: 0.0,
+                        top: 0.0,
+                        low: 0.0,
+                        crest: 0.0,
+                        foot: 0.0,
+                        crest_xy: [x, y],
+                        foot_xy: [x, y],
+                    }
+                } else {
+                    Cell::EMPTY
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn remembered_cells_count_in_the_seen_fraction_by_their_confidence() {
+        let config = Config::default();
+        let spec = GridSpec::from_config(&config);
+        let projector = Projector::new(&config, 640, 480);
+        let mut a = Analyzer::new(&config, spec, &projector).unwrap();
+        let expected = a.expected().to_vec();
+        let e = expected.iter().filter(|&&x| x).count() as f32;
+        let cut = vec![false; spec.cell_count()];
+        let extra = 100;
+        let cells = flat(&spec, &expected, extra);
+        let mut v = Verdict::default();
+        // The frame alone: everything in view seen.
+        a.analyze(&cells, None, &cut, &mut v);
+        assert_eq!((v.decision, v.seen_fraction), (Decision::Go, 1.0));
+        // Remembered cells out of view at confidence k weigh k each.
+        for k in [1.0f32, 0.5, 0.1] {
+            let confidence: Vec<f32> = expected
+                .iter()
+                .zip(&cells)
+                .map(|(&ex, c)| if !ex && c.n > 0 { k } else { 0.0 })
+                .collect();
+            a.analyze(&cells, Some(&confidence), &cut, &mut v);
+            let want = (e + extra as f32 * k) / (e + extra as f32);
+            assert!((v.seen_fraction - want).abs() < 1e-5, "{k}: {v:?}");
+            assert_eq!(v.decision, Decision::Go);
+        }
+    }
 }

@@ -108,6 +108,14 @@ impl<'a> Scene<'a> {
         (travel > 0.0).then_some(travel)
     }
 
+    /// For a cell out of the camera's view that the verdict took from the terrain
+    /// memory: its confidence, 0..=1 (1: just seen from near).
+    pub fn remembered_confidence(&self, ix: usize, iy: usize) -> Option<f32> {
+        let i = self.spec.cell(ix, iy);
+        let k = *self.memory?.confidence().get(i)?;
+        (k > 0.0 && !self.expected[i] && self.seen(i)).then_some(k)
+    }
+
     /// Whether cell `i` has enough points to count as seen.
     pub fn seen(&self, i: usize) -> bool {
         self.cells[i].n >= self.config.analysis.min_points_per_cell

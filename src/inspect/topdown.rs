@@ -65,15 +65,15 @@ pub fn draw(scene: &Scene<'_>) -> Canvas {
                 let z = f64::from(scene.cells[i].z);
                 let t = (z - Z_RANGE_M.0) / (Z_RANGE_M.1 - Z_RANGE_M.0);
                 let mut colour = turbo(t);
-                // Remembered, out of view: faded toward grey with the travel since it
-                // was seen (fully grey where it would be forgotten), dotted.
-                if let Some(travel) = scene.remembered_travel(ix, iy) {
-                    let max = scene.config.memory.max_travel_m as f32;
-                    let k = 0.3 + 0.6 * (travel / max).clamp(0.0, 1.0);
-                    colour = fade(colour, k);
+                // Remembered, out of view: faded toward grey as its confidence falls
+                // (with the travel and time since it was seen, and the range it was
+                // seen from; fully grey where it would be forgotten), dotted.
+                let remembered = scene.remembered_confidence(ix, iy);
+                if let Some(k) = remembered {
+                    colour = fade(colour, 0.3 + 0.6 * (1.0 - k));
                 }
                 c.fill(x0, y0, cp, cp, colour);
-                if scene.remembered_travel(ix, iy).is_some() {
+                if remembered.is_some() {
                     c.set(x0 + cp as i32 / 2, y0 + cp as i32 / 2, rgb(40, 40, 40));
                 }
             } else if scene.expected[i] {
@@ -200,7 +200,7 @@ fn panel(c: &mut Canvas, scene: &Scene<'_>, x: i32) {
     decision_badge(c, scene.verdict, &mut at);
     verdict_lines(c, scene, &mut at);
     let remembered = (0..scene.spec.nx)
-        .any(|ix| (0..scene.spec.ny).any(|iy| scene.remembered_travel(ix, iy).is_some()));
+        .any(|ix| (0..scene.spec.ny).any(|iy| scene.remembered_confidence(ix, iy).is_some()));
     legend(c, x, at.y + 16, remembered);
 }
 
@@ -382,7 +382,7 @@ fn legend(c: &mut Canvas, x: i32, mut y: i32, remembered: bool) {
             "remembered, out of view: greyer",
         );
         c.text(
-            "the farther driven since seen",
+            "the longer ago or farther seen",
             x + 20,
             y + 14,
             SMALL,

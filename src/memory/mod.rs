@@ -100,6 +100,8 @@ struct Remembered {
     travel_m: f32,
     /// Time since it was last seen, seconds.
     age_s: f32,
+    /// The camera's distance from its points when last seen, metres.
+    range_m: f32,
     /// A copy of a neighbour filling a hole the motion left: used this frame, never
     /// moved on (the original is, and copies again where a hole is left).
     copy: bool,
@@ -112,6 +114,7 @@ impl Remembered {
         weight: 0.0,
         travel_m: 0.0,
         age_s: 0.0,
+        range_m: 0.0,
         copy: false,
     };
 
@@ -159,6 +162,11 @@ pub struct TerrainMemory {
     /// Whether each map cell's content landed in `next`.
     placed: Vec<bool>,
     fused: Vec<Cell>,
+    /// Per fused cell, the confidence of the remembered cell it came from (0: the
+    /// frame's own).
+    confidence: Vec<f32>,
+    /// Where the camera is, rover frame, metres.
+    camera: [f32; 3],
     hazards: heapless::Vec<CarriedHazard, MAX_HAZARDS>,
     /// Where the camera's whole-cell view starts on the left track, the belly band
     /// and the right track, metres (nearer is out of view).
@@ -170,7 +178,14 @@ pub struct TerrainMemory {
     max_travel_m: f32,
     max_age_s: f32,
     remembered: u32,
+    /// The sum of the remembered cells' confidence in the last fuse.
+    confidence_sum: f32,
 }
+
+/// Range up to which a cell is seen as well as the camera sees anything, metres: a
+/// depth camera's noise grows with the square of the range (σ = 1.425e-3 m⁻¹ · Z² for
+/// a Kinect v1: 3 mm here), so a cell last seen from twice as far counts a quarter.
+pub const CLEAR_RANGE_M: f32 = 1.5;
 
 /// Width of the map beyond the corridor on each side, metres.
 const SIDE_MARGIN_M: f64 = 0.2;
@@ -194,6 +209,12 @@ impl TerrainMemory {
             source: vec![usize::MAX; nx * ny],
             placed: vec![false; nx * ny],
             fused: vec![Cell::EMPTY; spec.cell_count()],
+            confidence: vec![0.0; spec.cell_count()],
+            camera: [
+                config.mount.x_m as f32,
+                config.mount.y_m as f32,
+                config.mount.z_m as f32,
+            ],
             hazards: heapless::Vec::new(),
             view_start: [0.0; 3],
             side_y: {
@@ -206,7 +227,18 @@ impl TerrainMemory {
             max_travel_m: m.max_travel_m as f32,
             max_age_s: m.max_age_s as f32,
             remembered: 0,
+            confidence_sum: 0.0,
         }
+    }
+
+    /// How much a remembered cell is worth against one seen now, 0..=1: its
+    /// remaining life (the larger of the travel and the time since it was seen, as
+    /// parts of `max_travel_m` and `max_age_s`) times `(CLEAR_RANGE_M / range)²` for
+    /// a cell last seen from farther than [`CLEAR_RANGE_M`].
+    fn confidence_of(&self, r: &Remembered) -> f32 {
+        let spent = (r.travel_m / self.max_travel_m).max(r.age_s / self.max_age_s);
+        let range = (CLEAR_RANGE_M / r.range_m.max(CLEAR_RANGE_M)).powi(2);
+        ((1.0 - spent) * range).clamp(0.0, 1.0)
     }
 
     /// Forget everything (odometry lost: the map can no longer be placed).
@@ -406,6 +438,7 @@ impl TerrainMemory {
     pub fn fuse(&mut self, frame: &[Cell], expected: &[bool]) -> u32 {
         let s = self.spec;
         let mut remembered = 0u32;
+        let mut confidence_sum = 0.0f32;
         for ix in 0..s.nx {
             for iy in 0..s.ny {
                 let c = s.cell(ix, iy);
@@ -420,10 +453,15 @@ impl TerrainMemory {
                         r.travel_m = 0.0;
                         r.age_s = 0.0;
                     }
+                    let r = *r;
+                    let k = self.confidence_of(&r);
                     self.fused[c] = r.cell;
+                    self.confidence[c] = k;
+                    confidence_sum += k;
                     remembered += 1;
                     continue;
                 }
+                self.confidence[c] = 0.0;
                 if seen {
                     // Frames that agree are averaged, weighted by their points (a
                     // cell seen from near has more): noise falls as the rover drives
@@ -438,12 +476,15 @@ impl TerrainMemory {
                     };
                     let cell = blend(&r.cell, w_old, &now, w_now);
                     let frames = if same { r.frames.saturating_add(1) } else { 1 };
+                    let cam = self.camera;
+                    let range_m = (now.x - cam[0]).hypot(now.y - cam[1]).hypot(now.z - cam[2]);
                     *r = Remembered {
                         cell,
                         frames,
                         weight: w_old + w_now,
                         travel_m: 0.0,
                         age_s: 0.0,
+                        range_m,
                         copy: false,
                     };
                     self.fused[c] = cell;
@@ -453,7 +494,23 @@ impl TerrainMemory {
             }
         }
         self.remembered = remembered;
+        self.confidence_sum = confidence_sum;
         remembered
+    }
+
+    /// Per cell of the last fuse (analysis grid layout), the confidence of the
+    /// remembered cell it came from, 0..=1 (0: the frame's own).
+    pub fn confidence(&self) -> &[f32] {
+        &self.confidence
+    }
+
+    /// The mean confidence of the cells the last fuse took from memory (0 when none).
+    pub fn mean_confidence(&self) -> f32 {
+        if self.remembered == 0 {
+            0.0
+        } else {
+            self.confidence_sum / self.remembered as f32
+        }
     }
 
     /// The cells of the last [`TerrainMemory::fuse`], analysis grid layout.
@@ -691,6 +748,58 @@ mod tests {
             })
             .collect();
         assert_eq!(kept, [1, 1, 1, 0]);
+    }
+
+    #[test]
+    fn confidence_falls_with_travel_time_and_range() {
+        let (cfg, spec) = setup();
+        let blind = vec![false; spec.cell_count()];
+        let empty = vec![Cell::EMPTY; spec.cell_count()];
+        // The confidence of the one remembered cell after `moves`, seen at (x, y).
+        let after = |x: f32, y: f32, moves: &[Motion]| {
+            let mut m = TerrainMemory::new(&cfg, spec);
+            let f = frame_with(&spec, x, y, 0.0);
+            m.fuse(&f, &blind);
+            m.fuse(&f, &blind);
+            for mv in moves {
+                m.advance(mv);
+                m.fuse(&empty, &blind);
+            }
+            assert_eq!(m.remembered(), 1);
+            let k: Vec<f32> = m
+                .confidence()
+                .iter()
+                .copied()
+                .filter(|&k| k > 0.0)
+                .collect();
+            assert_eq!(k.len(), 1);
+            assert!((m.mean_confidence() - k[0]).abs() < 1e-6);
+            k[0]
+        };
+        let back = |d: f32| Motion {
+            forward_m: -d,
+            ..Motion::default()
+        };
+        let wait = |t: f32| Motion {
+            dt_s: t,
+            ..Motion::default()
+        };
+        // Seen from near (about 1.2 m from the camera), just now: full confidence.
+        assert!((after(1.0, 0.4, &[wait(0.0)]) - 1.0).abs() < 1e-6);
+        // Half of max_travel_m (1.5 m) driven since, or half of max_age_s (30 s) gone:
+        // half; both: still half (the larger share counts).
+        assert!((after(1.0, 0.4, &[back(0.75)]) - 0.5).abs() < 1e-3);
+        assert!((after(1.0, 0.4, &[wait(15.0)]) - 0.5).abs() < 1e-3);
+        assert!((after(1.0, 0.4, &[back(0.3), wait(15.0)]) - 0.5).abs() < 1e-3);
+        // Seen from twice CLEAR_RANGE_M: a quarter.
+        let cam = [
+            cfg.mount.x_m as f32,
+            cfg.mount.y_m as f32,
+            cfg.mount.z_m as f32,
+        ];
+        let ground = (2.0 * CLEAR_RANGE_M).powi(2) - cam[2].powi(2) - (0.4 - cam[1]).powi(2);
+        let x = cam[0] + ground.sqrt();
+        assert!((after(x, 0.4, &[wait(0.0)]) - 0.25).abs() < 1e-3);
     }
 
     #[test]
