@@ -186,7 +186,8 @@ impl Pipeline {
                     Ok(m) => memory.advance(&m),
                     Err(_) => memory.clear(),
                 }
-                let remembered = memory.fuse(self.grid.cells(), self.analyzer.expected());
+                let remembered =
+                    memory.fuse(self.grid.cells(), self.analyzer.expected(), self.grid.cut());
                 v.memory = crate::verdict::MemoryUse {
                     state: if motion.is_ok() {
                         MemoryState::Fused

@@ -601,3 +601,22 @@ fn a_ramp_toe_keeps_its_distance_into_the_blind_zone() {
         assert!((g - 20.0).abs() <= 0.5, "frame {k}: gradient {g}");
     }
 }
+
+#[test]
+fn a_noisy_drive_fused_has_quieter_cells_and_measures_within_the_noisy_bars() {
+    // The validation report's drive: 20 frames with Kinect v1 noise toward a 20° ramp.
+    let c =
+        rover_terrain::validate::run_memory_drive(rover_terrain::validate::FAMILY_SEED).unwrap();
+    assert_eq!((c.single.measured, c.fused.measured), (20, 20));
+    // Averaging agreeing views: each cell's height is less noisy...
+    assert!(
+        c.fused.cell_rms_m < 0.8 * c.single.cell_rms_m,
+        "cell RMS fused {} vs single {}",
+        c.fused.cell_rms_m,
+        c.single.cell_rms_m
+    );
+    // ...and the ramp is measured within the noisy bars in every frame, fused or not.
+    for e in [c.single, c.fused] {
+        assert!(e.distance_max < 0.03 && e.gradient_max < 1.5, "{e:?}");
+    }
+}

@@ -434,8 +434,12 @@ impl TerrainMemory {
     ///   consistent height): a partial view of a cell is a biased one. Otherwise it
     ///   is the frame's, and the frame's view is remembered.
     ///
+    /// A cell the image's top edge cuts now (`cut`; empty: none) holds only the
+    /// lower part of what stands there: it is the frame's alone, and it is not
+    /// averaged into the next frame's view of that cell either.
+    ///
     /// Returns how many cells came from memory.
-    pub fn fuse(&mut self, frame: &[Cell], expected: &[bool]) -> u32 {
+    pub fn fuse(&mut self, frame: &[Cell], expected: &[bool], cut: &[bool]) -> u32 {
         let s = self.spec;
         let mut remembered = 0u32;
         let mut confidence_sum = 0.0f32;
@@ -467,9 +471,10 @@ impl TerrainMemory {
                     // cell seen from near has more): noise falls as the rover drives
                     // on. A cell that changed (a face appeared, a rock went) is the
                     // frame's alone.
+                    let partial = cut.get(c) == Some(&true);
                     let agree = same && (r.cell.top - now.top).abs() <= CONSISTENT_M;
                     let w_now = now.n as f32;
-                    let w_old = if agree {
+                    let w_old = if agree && !partial {
                         r.weight.min(BLEND_FRAMES * w_now)
                     } else {
                         0.0
@@ -481,7 +486,8 @@ impl TerrainMemory {
                     *r = Remembered {
                         cell,
                         frames,
-                        weight: w_old + w_now,
+                        // A cut cell's view is biased low: the next frame starts anew.
+                        weight: if partial { 0.0 } else { w_old + w_now },
                         travel_m: 0.0,
                         age_s: 0.0,
                         range_m,
@@ -644,8 +650,8 @@ mod tests {
         let mut m = TerrainMemory::new(&cfg, spec);
         let blind = vec![false; spec.cell_count()];
         let f = frame_with(&spec, 1.012, 0.41, 0.15);
-        m.fuse(&f, &blind);
-        m.fuse(&f, &blind); // seen twice: trusted
+        m.fuse(&f, &blind, &[]);
+        m.fuse(&f, &blind, &[]); // seen twice: trusted
         let empty = vec![Cell::EMPTY; spec.cell_count()];
         // 90 steps of 1 cm (under half a cell each): the cell must still arrive.
         for _ in 0..90 {
@@ -654,7 +660,7 @@ mod tests {
                 dt_s: 0.033,
                 ..Motion::default()
             });
-            m.fuse(&empty, &blind);
+            m.fuse(&empty, &blind, &[]);
         }
         let at = seen_at(&m, &spec);
         assert_eq!(at.len(), 1, "{at:?}");
@@ -670,8 +676,8 @@ mod tests {
         let mut m = TerrainMemory::new(&cfg, spec);
         let blind = vec![false; spec.cell_count()];
         let f = frame_with(&spec, 1.0, 0.5, 0.1);
-        m.fuse(&f, &blind);
-        m.fuse(&f, &blind);
+        m.fuse(&f, &blind, &[]);
+        m.fuse(&f, &blind, &[]);
         let empty = vec![Cell::EMPTY; spec.cell_count()];
         // Turn 20° left on the spot in 1° steps: the cell swings right, about the origin.
         for _ in 0..20 {
@@ -680,7 +686,7 @@ mod tests {
                 dt_s: 0.033,
                 ..Motion::default()
             });
-            m.fuse(&empty, &blind);
+            m.fuse(&empty, &blind, &[]);
         }
         let a = -20f32.to_radians();
         let want = [a.cos() - 0.5 * a.sin(), a.sin() + 0.5 * a.cos()];
@@ -706,19 +712,19 @@ mod tests {
         };
         // Seen once: never used out of view.
         let mut m = TerrainMemory::new(&cfg, spec);
-        m.fuse(&f, &blind);
+        m.fuse(&f, &blind, &[]);
         m.advance(&step);
-        assert_eq!(m.fuse(&empty, &blind), 0);
+        assert_eq!(m.fuse(&empty, &blind, &[]), 0);
         // Seen twice at different heights: still one consistent frame.
         let mut m = TerrainMemory::new(&cfg, spec);
-        m.fuse(&f, &blind);
-        m.fuse(&frame_with(&spec, 1.0, 0.4, 0.3), &blind);
+        m.fuse(&f, &blind, &[]);
+        m.fuse(&frame_with(&spec, 1.0, 0.4, 0.3), &blind, &[]);
         m.advance(&step);
-        assert_eq!(m.fuse(&empty, &blind), 0);
+        assert_eq!(m.fuse(&empty, &blind, &[]), 0);
         // Seen twice alike: remembered, until max_travel_m (1.5 m) of travel.
         let mut m = TerrainMemory::new(&cfg, spec);
-        m.fuse(&f, &blind);
-        m.fuse(&f, &blind);
+        m.fuse(&f, &blind, &[]);
+        m.fuse(&f, &blind, &[]);
         let mut kept = 0;
         for _ in 0..40 {
             m.advance(&Motion {
@@ -726,7 +732,7 @@ mod tests {
                 dt_s: 0.1,
                 ..Motion::default()
             });
-            kept += m.fuse(&empty, &blind);
+            kept += m.fuse(&empty, &blind, &[]);
         }
         // (The cell at a boundary may be filled by a copy one frame longer.)
         assert!(
@@ -735,8 +741,8 @@ mod tests {
         );
         // Time alone ages it too (max_age_s = 30 s).
         let mut m = TerrainMemory::new(&cfg, spec);
-        m.fuse(&f, &blind);
-        m.fuse(&f, &blind);
+        m.fuse(&f, &blind, &[]);
+        m.fuse(&f, &blind, &[]);
         let still = Motion {
             dt_s: 10.0,
             ..Motion::default()
@@ -744,7 +750,7 @@ mod tests {
         let kept: Vec<u32> = (0..4)
             .map(|_| {
                 m.advance(&still);
-                m.fuse(&empty, &blind)
+                m.fuse(&empty, &blind, &[])
             })
             .collect();
         assert_eq!(kept, [1, 1, 1, 0]);
@@ -759,11 +765,11 @@ mod tests {
         let after = |x: f32, y: f32, moves: &[Motion]| {
             let mut m = TerrainMemory::new(&cfg, spec);
             let f = frame_with(&spec, x, y, 0.0);
-            m.fuse(&f, &blind);
-            m.fuse(&f, &blind);
+            m.fuse(&f, &blind, &[]);
+            m.fuse(&f, &blind, &[]);
             for mv in moves {
                 m.advance(mv);
-                m.fuse(&empty, &blind);
+                m.fuse(&empty, &blind, &[]);
             }
             assert_eq!(m.remembered(), 1);
             let k: Vec<f32> = m
@@ -803,29 +809,55 @@ mod tests {
     }
 
     #[test]
+    fn agreeing_views_are_averaged_but_not_with_a_view_the_image_edge_cut() {
+        let (cfg, spec) = setup();
+        let view = vec![true; spec.cell_count()];
+        let (x, y) = (2.5, 0.4);
+        let (ix, iy) = spec.cell_at(x, y).unwrap();
+        let mut cut = vec![false; spec.cell_count()];
+        cut[spec.cell(ix, iy)] = true;
+        let z_of = |m: &TerrainMemory| m.cells().iter().find(|c| c.n > 0).unwrap().z;
+        // Two agreeing views: averaged, between the two.
+        let mut m = TerrainMemory::new(&cfg, spec);
+        m.fuse(&frame_with(&spec, x, y, 0.30), &view, &[]);
+        m.fuse(&frame_with(&spec, x, y, 0.32), &view, &[]);
+        let z = z_of(&m);
+        assert!(z > 0.30 && z < 0.32, "{z}");
+        // The same with the second view cut by the image's top edge: it is the frame's
+        // alone (biased low: only the cell's lower part is seen)...
+        let mut m = TerrainMemory::new(&cfg, spec);
+        m.fuse(&frame_with(&spec, x, y, 0.32), &view, &[]);
+        m.fuse(&frame_with(&spec, x, y, 0.30), &view, &cut);
+        assert_eq!(z_of(&m), 0.30);
+        // ...and the next whole view is not averaged with it.
+        m.fuse(&frame_with(&spec, x, y, 0.32), &view, &[]);
+        assert_eq!(z_of(&m), 0.32);
+    }
+
+    #[test]
     fn what_the_camera_sees_now_wins_and_what_it_should_see_is_not_filled() {
         let (cfg, spec) = setup();
         let mut m = TerrainMemory::new(&cfg, spec);
         let blind = vec![false; spec.cell_count()];
         let rock = frame_with(&spec, 1.0, 0.4, 0.2);
-        m.fuse(&rock, &blind);
-        m.fuse(&rock, &blind);
+        m.fuse(&rock, &blind, &[]);
+        m.fuse(&rock, &blind, &[]);
         // Seen again lower, wholly in view: the frame's height.
         let view = vec![true; spec.cell_count()];
         let ground = frame_with(&spec, 1.0, 0.4, 0.0);
-        m.fuse(&ground, &view);
+        m.fuse(&ground, &view, &[]);
         let c = m.cells().iter().find(|c| c.n > 0).unwrap();
         assert_eq!(c.z, 0.0);
         // Out of view (or partly), the trusted memory beats a partial view...
         let mut m = TerrainMemory::new(&cfg, spec);
-        m.fuse(&rock, &view);
-        m.fuse(&rock, &view);
-        m.fuse(&ground, &blind);
+        m.fuse(&rock, &view, &[]);
+        m.fuse(&rock, &view, &[]);
+        m.fuse(&ground, &blind, &[]);
         let c = m.cells().iter().find(|c| c.n > 0).unwrap();
         assert_eq!(c.z, 0.2);
         // ...and in view and unseen, nothing is filled from memory.
         let empty = vec![Cell::EMPTY; spec.cell_count()];
-        assert_eq!(m.fuse(&empty, &view), 0);
+        assert_eq!(m.fuse(&empty, &view, &[]), 0);
         assert!(m.cells().iter().all(|c| c.n == 0));
     }
 
