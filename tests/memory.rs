@@ -199,11 +199,11 @@ fn steps_of_two_to_ten_centimetres_with_turns_keep_the_block_in_place() {
         })
         .collect();
     assert!(steps.len() > 20);
-    // Steps that are not whole cells move the edge within the 5 cm grid: a single
-    // frame in full view already quantises the step's distance by up to half a cell,
-    // where the edge leaves the view the frame's cells and the remembered ones meet,
-    // and a carried hazard turns about its side's centre line: within 4.5 cm.
-    assert_tracked(&drive(&block_ahead(), &steps, Some(1.0)), |_| 0.045);
+    // Steps that are not whole cells move the edge within the 5 cm grid, and turns
+    // slant it across the cells: a single frame's distance is off by up to 4 cm. The
+    // memory reports the mean of the last frames' views, each carried exactly by the
+    // odometry: within the ± 2 cm the straight drive holds.
+    assert_tracked(&drive(&block_ahead(), &steps, Some(1.0)), |_| 0.02);
 }
 
 #[test]

@@ -142,6 +142,9 @@ struct CarriedHazard {
 /// same hazard, metres.
 const SAME_HAZARD_M: f32 = 0.15;
 
+/// A carried hazard's place is the mean of about this many frames' views of it.
+const CARRY_FRAMES: u16 = 4;
+
 /// Heights of one cell in two frames within this of each other count as the same
 /// ground, metres: a frame that disagrees starts the cell's count again.
 const CONSISTENT_M: f32 = 0.04;
@@ -401,7 +404,8 @@ impl TerrainMemory {
         }
         let old = self.hazards.clone();
         self.hazards.clear();
-        for h in &verdict.hazards {
+        let mut moved = false;
+        for h in verdict.hazards.iter_mut() {
             let k = side_index(h.side);
             let prev = old.iter().find(|c| {
                 c.kind == h.kind
@@ -411,16 +415,40 @@ impl TerrainMemory {
             let carried = match prev {
                 // Out of view: the carried one itself, where the motion put it.
                 Some(p) if h.distance_m < self.view_start[k] => *p,
-                _ => CarriedHazard {
+                // In view again: where it was carried to, averaged with where the
+                // frame finds it (a frame's distance is quantised by the grid; the
+                // carried one is the mean of the last frames', moved exactly).
+                Some(p) => {
+                    let w = 1.0 / f32::from(p.frames.saturating_add(1).min(CARRY_FRAMES));
+                    CarriedHazard {
+                        at: [p.at[0] + w * (h.distance_m - p.at[0]), self.side_y[k]],
+                        frames: p.frames.saturating_add(1),
+                        travel_m: 0.0,
+                        age_s: 0.0,
+                        ..*p
+                    }
+                }
+                None => CarriedHazard {
                     kind: h.kind,
                     side: h.side,
                     at: [h.distance_m, self.side_y[k]],
-                    frames: prev.map_or(1, |p| p.frames.saturating_add(1)),
+                    frames: 1,
                     travel_m: 0.0,
                     age_s: 0.0,
                 },
             };
+            // A hazard seen again in view is reported where the frames' views of it,
+            // carried exactly, put it on average.
+            if prev.is_some() && h.distance_m != carried.at[0] {
+                h.distance_m = carried.at[0].max(0.0);
+                moved = true;
+            }
             let _ = self.hazards.push(carried);
+        }
+        if moved {
+            verdict
+                .hazards
+                .sort_unstable_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
         }
         added
     }
