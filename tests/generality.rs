@@ -70,6 +70,31 @@ fn ground_falling_away_beyond_a_tracks_inner_edge_is_go() {
 }
 
 #[test]
+fn a_trench_under_one_track_is_measured_past_its_walls() {
+    // A descent under one track only, capped into a floor: its outer wall stands on
+    // the corridor's edge, facing the camera, and its points share the outermost
+    // strip's cells with the floor's (many more points than the floor's there). They
+    // must not tilt the face: it is measured as in the clean strips beside them.
+    let c = Config::default();
+    for (toe, g, depth, left) in [
+        (1.726, -13.68, 0.172, false),
+        (1.628, -12.2, 0.231, true),
+        (1.238, -13.15, 0.165, true),
+    ] {
+        let (band, y, wc) = if left {
+            (LEFT_TRACK, 0.45, 9)
+        } else {
+            (RIGHT_TRACK, -0.45, 10)
+        };
+        let v = analyse(
+            vec![Element::ramp(toe, y, g, 0.0, band).capped(Some(depth))],
+            &c,
+        );
+        assert_go(&v, wc, toe, g, None);
+    }
+}
+
+#[test]
 fn a_toe_below_the_image_is_measured_from_the_face_and_flagged() {
     // The paper's Table 2 case 3 with the default mount: the camera sees ground
     // from about 0.64 m, the toe is at 0.474 m.

@@ -7,9 +7,11 @@
 //! 2. A track is affected when at least half of its seen strips have an onset of the
 //!    same direction; which tracks are affected, and how, gives the workcase family.
 //! 3. The face is fitted as a plane `z = a·x + b·y + c` to the cells past the onsets
-//!    (weighted by their point counts), iteratively: cells off the plane (the crest, a
-//!    plateau) and cells that straddle the toe line are dropped, then the fit is
-//!    extended to every consistent cell of the affected strips.
+//!    (weighted by their point counts, capped at [`WEIGHT_CAP`] times the mean),
+//!    iteratively: cells off the plane by three standard deviations (the smaller of
+//!    the RMS's and the median residual's estimate: the crest, a plateau, a wall's
+//!    points along a band edge) and cells that straddle the toe line are dropped,
+//!    then the fit is extended to every consistent cell of the affected strips.
 //! 4. The toe line is where the face meets the ground plane z = 0: its distance is
 //!    read at the centre line (both tracks) or the affected track's centre; the
 //!    gradient is the plane's steepest slope; alpha is `atan(b/a)`, positive when
@@ -43,6 +45,8 @@ pub struct Onset {
 const MIN_FACE_DEG: f64 = 2.0;
 /// Window of the first fit past the onset, metres.
 const FIRST_WINDOW_M: f32 = 0.25;
+/// A cell weighs in the face fit by its points, up to this many times the mean.
+const WEIGHT_CAP: f64 = 1.5;
 /// Least residual tolerance of the face fit, metres.
 const MIN_TOLERANCE_M: f64 = 0.006;
 
@@ -121,30 +125,47 @@ fn fit_face(
     let mut plane: Option<Plane> = None;
     for iteration in 0..10 {
         let mut fit = PlaneFit::default();
-        let mut used = 0usize;
+        let (used, points) = f
+            .cells
+            .iter()
+            .enumerate()
+            .filter(|&(c, _)| use_cell[c])
+            .fold((0usize, 0f64), |(k, p), (_, cell)| {
+                (k + 1, p + f64::from(cell.n))
+            });
+        // Cells weigh by their points, up to WEIGHT_CAP times the mean: a cell whose
+        // points are mostly a face turned to the camera (a trench's wall along the
+        // band's edge) has many more, and must not steer the fit.
+        let cap = WEIGHT_CAP * points / used.max(1) as f64;
         for (c, cell) in f.cells.iter().enumerate() {
             if use_cell[c] {
                 fit.add(
                     f64::from(cell.x),
                     f64::from(cell.y),
                     f64::from(height(f, c)),
-                    f64::from(cell.n),
+                    f64::from(cell.n).min(cap),
                 );
-                used += 1;
             }
         }
         let Some(p) = (used >= 3).then(|| fit.solve()).flatten() else {
             break;
         };
         let mut sq = 0.0;
+        let mut spread = Spread::default();
         for (c, cell) in f.cells.iter().enumerate() {
             if use_cell[c] {
                 let z = height(f, c);
                 let r = f64::from(z) - p.z(f64::from(cell.x), f64::from(cell.y));
-                sq += f64::from(cell.n) * r * r;
+                sq += f64::from(cell.n).min(cap) * r * r;
+                spread.add(r);
             }
         }
-        let tol = MIN_TOLERANCE_M.max(3.0 * (sq / fit.weight()).sqrt());
+        // Three standard deviations of the residuals, the smaller of the RMS's and the
+        // median's estimate: a strip of cells off the face (a wall's points along a
+        // band edge, a plateau) inflates the RMS and would keep itself in.
+        let rms = (sq / fit.weight()).sqrt();
+        let sigma = spread.sigma().map_or(rms, |m| m.min(rms));
+        let tol = MIN_TOLERANCE_M.max(3.0 * sigma);
         let mut changed = false;
         for ix in 0..s.nx {
             for iy in 0..s.ny {
@@ -174,6 +195,48 @@ fn fit_face(
         }
     }
     plane
+}
+
+/// A histogram of absolute residuals in millimetre bins, for their median without
+/// sorting or a buffer.
+struct Spread {
+    bins: [u32; SPREAD_BINS],
+    n: u32,
+}
+
+impl Default for Spread {
+    fn default() -> Self {
+        Spread {
+            bins: [0; SPREAD_BINS],
+            n: 0,
+        }
+    }
+}
+
+/// Bins of [`Spread`], each 1 mm; larger residuals share the last.
+const SPREAD_BINS: usize = 64;
+
+impl Spread {
+    fn add(&mut self, r: f64) {
+        let k = ((r.abs() * 1000.0) as usize).min(SPREAD_BINS - 1);
+        self.bins[k] += 1;
+        self.n += 1;
+    }
+
+    /// The standard deviation a normal spread with this median absolute residual
+    /// has (1.4826 × the median, rounded up to its bin), metres; `None` when the
+    /// median lies past the last bin.
+    fn sigma(&self) -> Option<f64> {
+        let half = self.n.div_ceil(2);
+        let mut seen = 0;
+        for (k, &b) in self.bins.iter().enumerate().take(SPREAD_BINS - 1) {
+            seen += b;
+            if seen >= half && self.n > 0 {
+                return Some(1.4826 * (k + 1) as f64 / 1000.0);
+            }
+        }
+        None
+    }
 }
 
 /// How well a plane explains the cells `use_cell` marks: the sum of squared height
