@@ -7,8 +7,7 @@
 //! 2. A track is affected when at least half of its seen strips have an onset of the
 //!    same direction; which tracks are affected, and how, gives the workcase family.
 //! 3. The face is fitted as a plane `z = a·x + b·y + c` to the cells past the onsets
-//!    (weighted by their point counts, capped at [`WEIGHT_CAP`] times the mean),
-//!    iteratively: cells off the plane by three standard deviations (the smaller of
+//!    (weighted by their point counts after a first unweighted fit), iteratively: cells off the plane by three standard deviations (the smaller of
 //!    the RMS's and the median residual's estimate: the crest, a plateau, a wall's
 //!    points along a band edge) and cells that straddle the toe line are dropped,
 //!    then the fit is extended to every consistent cell of the affected strips.
@@ -45,8 +44,6 @@ pub struct Onset {
 const MIN_FACE_DEG: f64 = 2.0;
 /// Window of the first fit past the onset, metres.
 const FIRST_WINDOW_M: f32 = 0.25;
-/// A cell weighs in the face fit by its points, up to this many times the mean.
-const WEIGHT_CAP: f64 = 1.5;
 /// Least residual tolerance of the face fit, metres.
 const MIN_TOLERANCE_M: f64 = 0.006;
 
@@ -125,26 +122,28 @@ fn fit_face(
     let mut plane: Option<Plane> = None;
     for iteration in 0..10 {
         let mut fit = PlaneFit::default();
-        let (used, points) = f
-            .cells
-            .iter()
-            .enumerate()
-            .filter(|&(c, _)| use_cell[c])
-            .fold((0usize, 0f64), |(k, p), (_, cell)| {
-                (k + 1, p + f64::from(cell.n))
-            });
-        // Cells weigh by their points, up to WEIGHT_CAP times the mean: a cell whose
-        // points are mostly a face turned to the camera (a trench's wall along the
-        // band's edge) has many more, and must not steer the fit.
-        let cap = WEIGHT_CAP * points / used.max(1) as f64;
+        let mut used = 0usize;
+        // Cells weigh by their points, except in the first fit: a cell whose points
+        // are mostly a face turned to the camera (a trench's wall along the band's
+        // edge) has several times more, and would steer the first plane so far that
+        // the residuals could not tell it apart. Once judged by an unweighted plane,
+        // such cells are off it and dropped.
+        let weight = |cell: &crate::grid::Cell| {
+            if iteration == 0 {
+                1.0
+            } else {
+                f64::from(cell.n)
+            }
+        };
         for (c, cell) in f.cells.iter().enumerate() {
             if use_cell[c] {
                 fit.add(
                     f64::from(cell.x),
                     f64::from(cell.y),
                     f64::from(height(f, c)),
-                    f64::from(cell.n).min(cap),
+                    weight(cell),
                 );
+                used += 1;
             }
         }
         let Some(p) = (used >= 3).then(|| fit.solve()).flatten() else {
@@ -156,7 +155,7 @@ fn fit_face(
             if use_cell[c] {
                 let z = height(f, c);
                 let r = f64::from(z) - p.z(f64::from(cell.x), f64::from(cell.y));
-                sq += f64::from(cell.n).min(cap) * r * r;
+                sq += weight(cell) * r * r;
                 spread.add(r);
             }
         }
