@@ -510,7 +510,8 @@ impl TerrainMemory {
                     let cell = blend(&r.cell, w_old, &now, w_now);
                     let frames = if same { r.frames.saturating_add(1) } else { 1 };
                     let cam = self.camera;
-                    let range_m = (now.x - cam[0]).hypot(now.y - cam[1]).hypot(now.z - cam[2]);
+                    let d = [now.x - cam[0], now.y - cam[1], now.z - cam[2]];
+                    let range_m = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
                     *r = Remembered {
                         cell,
                         frames,
