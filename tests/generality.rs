@@ -80,6 +80,9 @@ fn a_trench_under_one_track_is_measured_past_its_walls() {
         (1.726, -13.68, 0.172, false),
         (1.628, -12.2, 0.231, true),
         (1.238, -13.15, 0.165, true),
+        // Deep at the corridor's end: past 2.6 m some of the outermost strip's cells
+        // hold so few floor points that neither surface is the floor alone.
+        (1.789, -10.0, 0.212, true),
     ] {
         let (band, y, wc) = if left {
             (LEFT_TRACK, 0.45, 9)
@@ -274,6 +277,42 @@ fn rough_ground_under_a_full_width_ramp_changes_no_verdict_and_keeps_the_measure
             "seed {seed}: gradient {g}, expected {grad}"
         );
     }
+}
+
+#[test]
+fn a_rough_ramp_under_the_limit_seen_coarsely_makes_no_step() {
+    // A 25° ramp with ±2.5 cm bumps 10 cm long seen by a 320×240 camera: over three
+    // cells the bumps steepen it to 37° and lift it by a wheel radius, the wheel's
+    // heights add another 2 cm where it steepens. The wheelbase of ground from that
+    // run lies on one 25° line within rough ground's spread: a rough ramp, no step.
+    let mut c = Config::default();
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.4;
+    c.mount.x_m = 0.096;
+    c.mount.y_m = 0.078;
+    c.mount.z_m = 0.84;
+    c.mount.roll_deg = -1.155;
+    c.mount.pitch_deg = 28.766;
+    c.mount.yaw_deg = -0.109;
+    let rough = Element::Rough {
+        amplitude_m: 0.025,
+        correlation_m: 0.10376,
+        seed: 9475884552557184608,
+    };
+    let ramp = Element::ramp(1.4944, 0.0, 24.963, 0.0, Extent::Full);
+    let v = analyse(vec![rough, ramp], &c);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    let f = v.feature.expect("a go has a feature");
+    assert_eq!(f.workcase, 2);
+    // Rough ground's bars.
+    assert!(
+        (f64::from(f.distance_m.unwrap()) - 1.4944).abs() <= 0.04,
+        "{f:?}"
+    );
+    assert!(
+        (f64::from(f.gradient_deg.unwrap()) - 24.963).abs() <= 2.0,
+        "{f:?}"
+    );
 }
 
 #[test]

@@ -70,10 +70,12 @@ pub fn steps_and_slopes(
                         [_, Some((_, z1))] => z1,
                         _ => cell.foot,
                     };
-                    if (cell.crest - near).abs() <= (cell.foot - near).abs() {
-                        cell.crest
+                    let (foot, crest) =
+                        strip_surfaces(cell, f.spec.x_centre(ix), f.spec.y_centre(iy), vs);
+                    if (crest - near).abs() <= (foot - near).abs() {
+                        crest
                     } else {
-                        cell.foot
+                        foot
                     }
                 };
                 if !past {
@@ -121,6 +123,24 @@ pub(crate) fn ground_beside_face(cell: &Cell, y_mid: f32, vs: f32) -> Option<f32
     } else {
         cell.foot
     })
+}
+
+/// The lower and upper surface a strip may follow in a cell: its foot and crest; in a
+/// cell where neither band held enough points to be a surface of its own
+/// ([`crate::grid::SURFACE_MIN_SHARE`]) but whose points span more than
+/// [`FACE_MIN_M`] and hug one side of the cell (their mean off the strip's centre
+/// line by [`FACE_OFF_VOXELS`], more than off the row's), its lowest and highest
+/// voxels. Such a cell holds a face along the strip seen broadside: a trench's wall
+/// on the corridor's edge, turned to the camera, has several times the points of
+/// the floor beside it, and their mean is neither surface.
+fn strip_surfaces(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> (f32, f32) {
+    let off_y = (cell.y - y_mid).abs();
+    let along = off_y >= FACE_OFF_VOXELS * vs && off_y > (cell.x - x_mid).abs();
+    if cell.crest == cell.foot && cell.top - cell.low >= FACE_MIN_M && along {
+        (cell.low, cell.top)
+    } else {
+        (cell.foot, cell.crest)
+    }
 }
 
 /// Least height between a cell's two surfaces for [`ground_beside_face`] to tell
@@ -192,7 +212,9 @@ fn strip_hazards(
             }
             if dx > 0.0 && dz.abs() >= tan_max * dx {
                 let kind = if dx <= 3.5 * vs {
-                    Some((HazardKind::Step, 0.5 * (xi + xj)))
+                    let rough_ramp = line_windows(strip, i, j, wheelbase.min(STEP_WINDOW_MAX_M))
+                        .any(|k| k < tan_max);
+                    (!rough_ramp).then_some((HazardKind::Step, 0.5 * (xi + xj)))
                 } else if sustained(&strip[i..=j]) && climb_slope(strip, i, j, wheelbase) >= tan_max
                 {
                     Some((HazardKind::Slope, xi))
@@ -236,7 +258,18 @@ fn sustained(run: &[StripCell]) -> bool {
 /// (the gentler of the two when both are lines). Otherwise the run's own: a short
 /// steep bank and the flat beside it are not one line, and keep their steepness.
 fn climb_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> f32 {
-    let short = fitted_slope(&strip[i..=j]);
+    line_windows(strip, i, j, wheelbase).fold(fitted_slope(&strip[i..=j]), f32::min)
+}
+
+/// The slopes |dz/dx| of the windows about a run `strip[i..=j]` that lie on one line
+/// (see [`climb_slope`]): a wheelbase of contiguous cells seen whole starting at the
+/// run's start, and one ending at its end, each when at least 0.9 wheelbase long.
+fn line_windows(
+    strip: &[StripCell],
+    i: usize,
+    j: usize,
+    wheelbase: f32,
+) -> impl Iterator<Item = f32> + '_ {
     let joined =
         |k: usize| strip[k + 1].ix == strip[k].ix + 1 && !strip[k].past && !strip[k + 1].past;
     let mut end = j;
@@ -253,9 +286,8 @@ fn climb_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> f32 {
     [&strip[i..=end], &strip[start..=last]]
         .into_iter()
         .filter(|w| w.iter().all(|c| !c.past))
-        .filter(|w| w[w.len() - 1].x - w[0].x >= 0.9 * wheelbase)
+        .filter(move |w| w[w.len() - 1].x - w[0].x >= 0.9 * wheelbase)
         .filter_map(line_slope)
-        .fold(short, f32::min)
 }
 
 /// The least-squares slope |dz/dx| of a run's wheel heights when they lie on one line
@@ -275,6 +307,12 @@ fn line_slope(run: &[StripCell]) -> Option<f32> {
 /// what a bank steeper than the limit and shorter than the wheelbase leaves (≥ 1.5 cm
 /// for banks whose wheelbase fit falls under 30°).
 const ROUGH_LINE_RMS_M: f32 = 0.016;
+
+/// Longest window for the step test's line (see [`steps_and_slopes`]), metres: over a
+/// window this long a step just over a wheel radius leaves an RMS of at least 2.6 cm
+/// about its best line (with the step anywhere in it), well over
+/// [`ROUGH_LINE_RMS_M`]; a longer window would dilute it.
+const STEP_WINDOW_MAX_M: f32 = 0.6;
 
 /// The least-squares slope |dz/dx| of a run's wheel heights: on rough ground the
 /// ends of a run may sit on a dip and a bump, steeper than the ground between.
