@@ -10,7 +10,7 @@ use rover_terrain::{Config, Decision, HazardKind, Verdict};
 #[path = "common/scenes.rs"]
 mod scenes;
 
-use scenes::{analyse, LEFT_TRACK, RIGHT_TRACK};
+use scenes::{analyse, analyse_noisy, LEFT_TRACK, RIGHT_TRACK};
 
 fn assert_go(v: &Verdict, wc: u8, d: f64, g: f64, alpha: Option<f64>) {
     assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
@@ -95,6 +95,126 @@ fn a_trench_under_one_track_is_measured_past_its_walls() {
         );
         assert_go(&v, wc, toe, g, None);
     }
+}
+
+#[test]
+fn a_trench_wall_seen_broadside_by_a_rolled_offset_camera_neither_stops_nor_tilts_the_face() {
+    // A Kinect v2 0.57 m high, 0.1 m right of the centre line and rolled 7°: the
+    // trench's outer wall on the corridor's edge faces it, and in the outermost strip
+    // its points outnumber the floor's so far that both of a cell's bands lie on the
+    // wall. Point-weighted, those cells bent the face (toe 13 cm early, 3° flat);
+    // with noise the strip followed the wall and found a step.
+    let mut c = Config::default();
+    (c.camera.width, c.camera.height) = (512, 424);
+    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
+    c.camera.min_range_m = 0.41;
+    c.mount.x_m = 0.057;
+    c.mount.y_m = -0.097;
+    c.mount.z_m = 0.568;
+    c.mount.roll_deg = -7.418;
+    c.mount.pitch_deg = 30.606;
+    c.mount.yaw_deg = 1.538;
+    let (toe, g) = (1.5687, -14.654);
+    let trench = || vec![Element::ramp(toe, 0.45, g, 0.0, LEFT_TRACK).capped(Some(0.2357))];
+    assert_go(&analyse(trench(), &c), 9, toe, g, None);
+    let v = analyse_noisy(trench(), &c, 7014);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    let f = v.feature.expect("a go has a feature");
+    assert_eq!(f.workcase, 9);
+    // The noisy bars.
+    assert!(
+        (f64::from(f.distance_m.unwrap()) - toe).abs() <= 0.03,
+        "{f:?}"
+    );
+    assert!(
+        (f64::from(f.gradient_deg.unwrap()) - g).abs() <= 1.5,
+        "{f:?}"
+    );
+}
+
+/// A 320×240 camera 0.9 m high pitched 20°, offset and yawed 9°: past 2.8 m its rows
+/// fall about one per cell on ground falling away at 12°.
+fn coarse_rig() -> Config {
+    let mut c = Config::default();
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.331;
+    c.mount.x_m = 0.122;
+    c.mount.y_m = -0.068;
+    c.mount.z_m = 0.895;
+    c.mount.roll_deg = -1.221;
+    c.mount.pitch_deg = 19.517;
+    c.mount.yaw_deg = 9.436;
+    c
+}
+
+#[test]
+fn cells_between_a_coarse_cameras_rows_are_no_drop_off_but_a_drop_off_still_is() {
+    let c = coarse_rig();
+    // Ground falling away beyond the left track's inner edge: with noise, a few
+    // cells of one strip at the corridor's end get no row, the strips beside them do.
+    let descent = Element::ramp(
+        1.2608,
+        0.45,
+        -12.626,
+        0.0,
+        Extent::Band {
+            from_m: 0.2,
+            to_m: 100.0,
+        },
+    );
+    let v = analyse_noisy(vec![descent.clone()], &c, 7002);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    assert_eq!(v.feature.unwrap().workcase, 9);
+    // A real edge there leaves every strip unseen from the edge on.
+    for edge in [2.6, 2.85] {
+        let drop = Element::DropOff {
+            x_m: edge,
+            depth_m: 0.5,
+        };
+        for (scene, name) in [
+            (vec![drop.clone()], "flat"),
+            (vec![descent.clone(), drop.clone()], "descent"),
+        ] {
+            let v = analyse_noisy(scene, &c, 7002);
+            assert!(
+                v.hazards.iter().any(|h| h.kind == HazardKind::DropOff),
+                "{name}, edge at {edge}: {:?}",
+                v.hazards
+            );
+        }
+    }
+}
+
+#[test]
+fn a_belly_rock_rising_out_of_the_image_is_never_go() {
+    // Camera 0.75 m high pitched 38°: the image's top edge passes 0.32 m over the
+    // ground 1.45 m out, so a 0.44 m rock there is seen only up to the clearance.
+    let mut c = Config::default();
+    c.mount.y_m = -0.09;
+    c.mount.z_m = 0.75;
+    c.mount.roll_deg = -3.8;
+    c.mount.pitch_deg = 37.9;
+    let rock = |h| Element::Rock {
+        x_m: 1.588,
+        y_m: 0.011,
+        radius_m: 0.139,
+        height_m: h,
+    };
+    let v = analyse(vec![rock(0.44)], &c);
+    assert_eq!(v.decision, Decision::Unknown, "{:?}", v.hazards);
+    assert!(v
+        .hazards
+        .iter()
+        .any(|h| h.kind == HazardKind::Unknown && (h.distance_m - 1.45).abs() < 0.1));
+    // Seen whole from the default mount, the same rock is a belly hazard, and a low
+    // one is straddled.
+    let v = analyse(vec![rock(0.44)], &Config::default());
+    assert!(
+        v.hazards.iter().any(|h| h.kind == HazardKind::Belly),
+        "{:?}",
+        v.hazards
+    );
+    assert_eq!(analyse(vec![rock(0.2)], &c).decision, Decision::Go);
 }
 
 #[test]

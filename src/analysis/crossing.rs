@@ -59,6 +59,13 @@ pub fn steps_and_slopes(
                     cell.top.max(cell.z)
                 } else if let Some(z) = ground_beside_face(cell, f.spec.y_centre(iy), vs) {
                     z
+                } else if let Some(z) = unresolved_ground(
+                    cell,
+                    (f.spec.x_centre(ix), f.spec.y_centre(iy)),
+                    vs,
+                    f.camera[1],
+                ) {
+                    z
                 } else {
                     // Of a cell's two surfaces, the one that continues the strip
                     // (its last height carried on at its slope, up to passable).
@@ -70,12 +77,10 @@ pub fn steps_and_slopes(
                         [_, Some((_, z1))] => z1,
                         _ => cell.foot,
                     };
-                    let (foot, crest) =
-                        strip_surfaces(cell, f.spec.x_centre(ix), f.spec.y_centre(iy), vs);
-                    if (crest - near).abs() <= (foot - near).abs() {
-                        crest
+                    if (cell.crest - near).abs() <= (cell.foot - near).abs() {
+                        cell.crest
                     } else {
-                        foot
+                        cell.foot
                     }
                 };
                 if !past {
@@ -125,22 +130,40 @@ pub(crate) fn ground_beside_face(cell: &Cell, y_mid: f32, vs: f32) -> Option<f32
     })
 }
 
-/// The lower and upper surface a strip may follow in a cell: its foot and crest; in a
-/// cell where neither band held enough points to be a surface of its own
-/// ([`crate::grid::SURFACE_MIN_SHARE`]) but whose points span more than
-/// [`FACE_MIN_M`] and hug one side of the cell (their mean off the strip's centre
-/// line by [`FACE_OFF_VOXELS`], more than off the row's), its lowest and highest
-/// voxels. Such a cell holds a face along the strip seen broadside: a trench's wall
-/// on the corridor's edge, turned to the camera, has several times the points of
-/// the floor beside it, and their mean is neither surface.
-fn strip_surfaces(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> (f32, f32) {
-    let off_y = (cell.y - y_mid).abs();
-    let along = off_y >= FACE_OFF_VOXELS * vs && off_y > (cell.x - x_mid).abs();
-    if cell.crest == cell.foot && cell.top - cell.low >= FACE_MIN_M && along {
-        (cell.low, cell.top)
-    } else {
-        (cell.foot, cell.crest)
+/// The ground of a cell holding a face along its strip that [`ground_beside_face`]
+/// cannot resolve ([`unresolved_face_along`]): a face seen is turned to the camera,
+/// so when its points hug the cell's side away from the camera the ground beyond
+/// that side is higher and the cell's ground is its lowest voxel (a trench's wall on
+/// the corridor's edge, whose points outnumber the floor's there so far that both of
+/// the cell's bands lie on the wall); when they hug the side toward the camera, the
+/// cell's ground is its highest voxel (a ramp's side beside the belly band). `None`
+/// for any other cell, or when the camera is right above the strip.
+fn unresolved_ground(
+    cell: &Cell,
+    (x_mid, y_mid): (f32, f32),
+    vs: f32,
+    camera_y: f32,
+) -> Option<f32> {
+    if !unresolved_face_along(cell, x_mid, y_mid, vs) || (camera_y - y_mid).abs() <= 0.5 * vs {
+        return None;
     }
+    let away = (cell.y - y_mid).signum() != (camera_y - y_mid).signum();
+    Some(if away { cell.low } else { cell.top })
+}
+
+/// Whether a cell holds a face along its strip whose ground its two surfaces do not
+/// give: its points span more than [`FACE_MIN_M`] and hug one side of the cell
+/// (their mean off the strip's centre line by [`FACE_OFF_VOXELS`], and off the row's
+/// by at most half that: a face along the strip, not a corner of one across it), but
+/// [`ground_beside_face`] cannot tell the bands apart. Its mean height
+/// belongs to neither the ground nor the face's other side. `x_mid`, `y_mid`: the
+/// cell's centre, metres.
+pub(crate) fn unresolved_face_along(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> bool {
+    let off_y = (cell.y - y_mid).abs();
+    cell.top - cell.low >= FACE_MIN_M
+        && off_y >= FACE_OFF_VOXELS * vs
+        && (cell.x - x_mid).abs() <= 0.5 * FACE_OFF_VOXELS * vs
+        && ground_beside_face(cell, y_mid, vs).is_none()
 }
 
 /// Least height between a cell's two surfaces for [`ground_beside_face`] to tell
@@ -339,9 +362,13 @@ const SLOPE_STRAIGHTNESS_M: f32 = 0.03;
 /// the ground plane z = 0, unless the track there is past the sensor's horizon: then
 /// the row is beyond view and not judged). A belly cell beside a track is also
 /// measured against that track cell's upper surface: a face along the band edge is
-/// the side of what stands in the track.
+/// the side of what stands in the track. A belly cell off the band's edges that the
+/// image's top edge cuts, already more than a wheel radius above the tracks beside
+/// it (which are seen), is an obstacle whose top is not seen: unknown ground there,
+/// whatever its bound.
 pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdict: &mut Verdict) {
     let clearance = f.cfg.rover.belly_clearance_m as f32;
+    let r = f.cfg.rover.wheel_radius_m as f32;
     let s = f.spec;
     track_medians(f, values, track_ref, |c| f.seen[c].then(|| f.cells[c].z));
     for ix in 0..s.nx {
@@ -381,9 +408,24 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
                 .filter(|&j| f.seen[j])
                 .map(|j| f.cells[j].crest)
                 .fold(reference, f32::max);
-            if f.cells[c].top - beside > clearance {
+            let above = f.cells[c].top - beside;
+            let edge = [iy.checked_sub(1), Some(iy + 1)]
+                .into_iter()
+                .any(|j| j.is_none_or(|j| j >= s.ny || f.region[j] != Region::Belly));
+            let kind = if above > clearance {
+                Some(HazardKind::Belly)
+            } else if f.past[c] && above > r && !edge {
+                // Rising out of the image more than a wheel radius above the tracks
+                // beside it, which are seen: an obstacle whose top is not seen. How
+                // tall it is, is not known. (An edge cell may hold the side of a
+                // ramp under the track beside it, rising out of view with it.)
+                Some(HazardKind::Unknown)
+            } else {
+                None
+            };
+            if let Some(kind) = kind {
                 verdict.add_hazard(Hazard {
-                    kind: HazardKind::Belly,
+                    kind,
                     side: Region::Belly.side(),
                     distance_m: s.origin[0] + ix as f32 * s.voxel_m,
                 });
@@ -439,6 +481,9 @@ fn median(values: &mut [f32]) -> f32 {
 /// - A gap with ground beyond it at a climbable level is the shadow of a low step
 ///   down when that ground explains it (the line of sight to the gap at the far
 ///   ground's height passes below the near edge); otherwise it is unknown ground.
+/// - Neither is a gap whose every cell fell between the camera's pixel rows
+///   ([`between_rows`]): ground there, continued from before the gap, would be
+///   crossed by under two rows per cell, and the strips on both sides see it.
 pub fn gaps(f: &Frame, verdict: &mut Verdict) {
     let s = f.spec;
     let r = f.cfg.rover.wheel_radius_m as f32;
@@ -603,25 +648,75 @@ fn judge_gap(
         return None;
     }
     let bumps = || bump_shadow(f, iy, start, end, before);
+    // Seen beside the strip where the camera's rows fall too sparsely to give every
+    // cell points.
+    let sampled_out = || {
+        unseen
+            .clone()
+            .all(|j| between_rows(f, j, iy, (predicted(s.x_centre(j)), k), r))
+    };
     match after {
         None => {
             // Nothing seen beyond: a drop-off, unless the ground before the gap,
             // continued at its slope, would be hidden all along by something seen
-            // (ground falling away beyond an edge beside the strip: a sideways shadow).
+            // (ground falling away beyond an edge beside the strip: a sideways shadow),
+            // or fell between the camera's rows.
             let hidden = unseen
                 .clone()
                 .all(|j| super::visibility::explained(f, j, iy, predicted(s.x_centre(j))));
-            (!hidden && !bumps()).then_some(HazardKind::DropOff)
+            (!hidden && !bumps() && !sampled_out()).then_some(HazardKind::DropOff)
         }
         Some((xa, za)) if za < zb - r && za < predicted(xa) - r => Some(HazardKind::DropOff),
         Some((_, za)) => {
             let all_shadowed = unseen
                 .clone()
                 .all(|j| super::visibility::explained(f, j, iy, za));
-            (!all_shadowed && !bumps()).then_some(HazardKind::Unknown)
+            (!all_shadowed && !bumps() && !sampled_out()).then_some(HazardKind::Unknown)
         }
     }
 }
+
+/// Whether unseen cell (`ix`, `iy`), its ground expected at `z` with slope `k` (dz/dx), fell between the
+/// camera's pixel rows: ground there would be crossed by fewer than
+/// [`SPARSE_ROWS`] rows per cell (far, at low incidence, or a coarse camera: a
+/// 320×240 camera's rows lie 5 cm apart on a 12° descent 3 m out), and the strips
+/// on both sides see ground in that row or the next one either way, within a wheel
+/// radius of the ground's slope continued. A drop-off's gap spans the strips beside
+/// it too, from its edge on.
+fn between_rows(f: &Frame, ix: usize, iy: usize, (z, k): (f32, f32), r: f32) -> bool {
+    let s = f.spec;
+    let x = s.x_centre(ix);
+    let beside_seen = [iy.checked_sub(1), Some(iy + 1)].into_iter().all(|side| {
+        side.filter(|&n| n < s.ny).is_some_and(|n| {
+            (ix.saturating_sub(1)..(ix + 2).min(s.nx)).any(|jx| {
+                let c = s.cell(jx, n);
+                f.seen[c] && (f.cells[c].z - (z + k * (f.cells[c].x - x))).abs() <= r
+            })
+        })
+    });
+    if !beside_seen {
+        return false;
+    }
+    let cam = f.camera;
+    let (dx, dy) = (s.x_centre(ix) - cam[0], s.y_centre(iy) - cam[1]);
+    let (d, h) = (dx.hypot(dy), cam[2] - z);
+    let range = d.hypot(h);
+    let incidence = h.atan2(d) - (-k * dx / d).atan();
+    let camera = &f.cfg.camera;
+    let Some((_, fy, _, _)) = f
+        .cfg
+        .intrinsics_for(camera.width as usize, camera.height as usize)
+        .pinhole
+    else {
+        return false;
+    };
+    let rows = s.voxel_m * incidence.sin() * fy as f32 / range;
+    rows < SPARSE_ROWS
+}
+
+/// Pixel rows per cell under which a cell may get none (rows fall at their own
+/// spacing, the cells at theirs).
+const SPARSE_ROWS: f32 = 2.0;
 
 /// Whether the unseen run `start..end` of strip `iy` is no longer than the shadow that
 /// rough ground's bumps cast at the camera's incidence on the ground before it: a

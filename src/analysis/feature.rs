@@ -7,7 +7,8 @@
 //! 2. A track is affected when at least half of its seen strips have an onset of the
 //!    same direction; which tracks are affected, and how, gives the workcase family.
 //! 3. The face is fitted as a plane `z = a·x + b·y + c` to the cells past the onsets
-//!    (weighted by their point counts after a first unweighted fit), iteratively: cells off the plane by three standard deviations (the smaller of
+//!    (weighted by their point counts after a first unweighted fit; cells holding a
+//!    face along their strip whose ground cannot be told are left out), iteratively: cells off the plane by three standard deviations (the smaller of
 //!    the RMS's and the median residual's estimate: the crest, a plateau, a wall's
 //!    points along a band edge) and cells that straddle the toe line are dropped,
 //!    then the fit is extended to every consistent cell of the affected strips.
@@ -17,7 +18,7 @@
 //!    the toe line's left end is nearer. A face too steep to fit as a plane (a low
 //!    step) is measured from the onsets, with a gradient of ±90°.
 
-use super::crossing::ground_beside_face;
+use super::crossing::{ground_beside_face, unresolved_face_along};
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region};
 use crate::verdict::Feature;
@@ -78,6 +79,7 @@ fn fit_face(
         chosen(iy)
             && matches!(onset[iy], Some(o) if o.dir == dir && ix >= o.ix)
             && f.seen[c]
+            && !ambiguous(f, c)
             && status(height(f, c), threshold) == Some(dir)
     };
     let in_window = |ix: usize, iy: usize| match onset[iy] {
@@ -118,6 +120,7 @@ fn fit_face(
             && chosen(iy)
             && matches!(onset[iy], Some(o) if o.dir == dir && ix + TOE_BAND_CELLS >= o.ix)
             && f.seen[c]
+            && !ambiguous(f, c)
     };
     let mut plane: Option<Plane> = None;
     for iteration in 0..10 {
@@ -279,6 +282,16 @@ fn height(f: &Frame, c: usize) -> f32 {
     let s = f.spec;
     let cell = &f.cells[c];
     ground_beside_face(cell, s.y_centre(c % s.ny), s.voxel_m).unwrap_or(cell.z)
+}
+
+/// Whether a track cell's height is neither surface's: a face along its strip seen
+/// broadside whose points outnumber the ground's there (a trench's wall on the
+/// corridor's edge). The face fit leaves it out: point-weighted, a strip of such
+/// cells would bend the plane toward itself and stay within its tolerance.
+fn ambiguous(f: &Frame, c: usize) -> bool {
+    let s = f.spec;
+    let (ix, iy) = (c / s.ny, c % s.ny);
+    unresolved_face_along(&f.cells[c], s.x_centre(ix), s.y_centre(iy), s.voxel_m)
 }
 
 fn status(z: f32, threshold: f32) -> Option<Dir> {

@@ -14,6 +14,22 @@ pub fn analyse(elements: Vec<Element>, config: &Config) -> Verdict {
         .clone()
 }
 
+/// The verdict on a frame of `elements` with Kinect v1 noise drawn from `seed`.
+#[allow(dead_code)] // not every test binary uses it
+pub fn analyse_noisy(elements: Vec<Element>, config: &Config, seed: u64) -> Verdict {
+    let mut frame = sim::render(&Terrain::new(elements), config);
+    sim::KinectNoise {
+        seed,
+        ..Default::default()
+    }
+    .apply(&mut frame, config.camera.hfov_deg);
+    Pipeline::new(config.clone())
+        .unwrap()
+        .process(&frame)
+        .unwrap()
+        .clone()
+}
+
 /// The default rover's left wheel track, side faces along both its edges.
 pub const LEFT_TRACK: Extent = Extent::Band {
     from_m: 0.2,
