@@ -104,16 +104,10 @@ fn a_trench_wall_seen_broadside_by_a_rolled_offset_camera_neither_stops_nor_tilt
     // its points outnumber the floor's so far that both of a cell's bands lie on the
     // wall. Point-weighted, those cells bent the face (toe 13 cm early, 3° flat);
     // with noise the strip followed the wall and found a step.
-    let mut c = Config::default();
+    let mut c = mounted([0.057, -0.097, 0.568], [-7.418, 30.606, 1.538]);
     (c.camera.width, c.camera.height) = (512, 424);
     (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
     c.camera.min_range_m = 0.41;
-    c.mount.x_m = 0.057;
-    c.mount.y_m = -0.097;
-    c.mount.z_m = 0.568;
-    c.mount.roll_deg = -7.418;
-    c.mount.pitch_deg = 30.606;
-    c.mount.yaw_deg = 1.538;
     let (toe, g) = (1.5687, -14.654);
     let trench = || vec![Element::ramp(toe, 0.45, g, 0.0, LEFT_TRACK).capped(Some(0.2357))];
     assert_go(&analyse(trench(), &c), 9, toe, g, None);
@@ -135,15 +129,18 @@ fn a_trench_wall_seen_broadside_by_a_rolled_offset_camera_neither_stops_nor_tilt
 /// A 320×240 camera 0.9 m high pitched 20°, offset and yawed 9°: past 2.8 m its rows
 /// fall about one per cell on ground falling away at 12°.
 fn coarse_rig() -> Config {
-    let mut c = Config::default();
+    let mut c = mounted([0.122, -0.068, 0.895], [-1.221, 19.517, 9.436]);
     (c.camera.width, c.camera.height) = (320, 240);
     c.camera.min_range_m = 0.331;
-    c.mount.x_m = 0.122;
-    c.mount.y_m = -0.068;
-    c.mount.z_m = 0.895;
-    c.mount.roll_deg = -1.221;
-    c.mount.pitch_deg = 19.517;
-    c.mount.yaw_deg = 9.436;
+    c
+}
+
+/// The default config with the camera at `[x, y, z]` (metres) turned by `[roll,
+/// pitch, yaw]` (degrees).
+fn mounted([x, y, z]: [f64; 3], [roll, pitch, yaw]: [f64; 3]) -> Config {
+    let mut c = Config::default();
+    (c.mount.x_m, c.mount.y_m, c.mount.z_m) = (x, y, z);
+    (c.mount.roll_deg, c.mount.pitch_deg, c.mount.yaw_deg) = (roll, pitch, yaw);
     c
 }
 
@@ -189,11 +186,7 @@ fn cells_between_a_coarse_cameras_rows_are_no_drop_off_but_a_drop_off_still_is()
 fn a_belly_rock_rising_out_of_the_image_is_never_go() {
     // Camera 0.75 m high pitched 38°: the image's top edge passes 0.32 m over the
     // ground 1.45 m out, so a 0.44 m rock there is seen only up to the clearance.
-    let mut c = Config::default();
-    c.mount.y_m = -0.09;
-    c.mount.z_m = 0.75;
-    c.mount.roll_deg = -3.8;
-    c.mount.pitch_deg = 37.9;
+    let c = mounted([0.0, -0.09, 0.75], [-3.8, 37.9, 0.0]);
     let rock = |h| Element::Rock {
         x_m: 1.588,
         y_m: 0.011,
@@ -405,15 +398,9 @@ fn a_rough_ramp_under_the_limit_seen_coarsely_makes_no_step() {
     // cells the bumps steepen it to 37° and lift it by a wheel radius, the wheel's
     // heights add another 2 cm where it steepens. The wheelbase of ground from that
     // run lies on one 25° line within rough ground's spread: a rough ramp, no step.
-    let mut c = Config::default();
+    let mut c = mounted([0.096, 0.078, 0.84], [-1.155, 28.766, -0.109]);
     (c.camera.width, c.camera.height) = (320, 240);
     c.camera.min_range_m = 0.4;
-    c.mount.x_m = 0.096;
-    c.mount.y_m = 0.078;
-    c.mount.z_m = 0.84;
-    c.mount.roll_deg = -1.155;
-    c.mount.pitch_deg = 28.766;
-    c.mount.yaw_deg = -0.109;
     let rough = Element::Rough {
         amplitude_m: 0.025,
         correlation_m: 0.10376,
