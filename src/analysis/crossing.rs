@@ -138,13 +138,15 @@ pub(crate) fn ground_beside_face(cell: &Cell, y_mid: f32, vs: f32) -> Option<f32
 /// the cell's bands lie on the wall); when they hug the side toward the camera, the
 /// cell's ground is its highest voxel (a ramp's side beside the belly band). `None`
 /// for any other cell, or when the camera is right above the strip.
+///
+/// For a cell [`ground_beside_face`] already gave nothing for.
 fn unresolved_ground(
     cell: &Cell,
     (x_mid, y_mid): (f32, f32),
     vs: f32,
     camera_y: f32,
 ) -> Option<f32> {
-    if !unresolved_face_along(cell, x_mid, y_mid, vs) || (camera_y - y_mid).abs() <= 0.5 * vs {
+    if !hugs_one_side(cell, x_mid, y_mid, vs) || (camera_y - y_mid).abs() <= 0.5 * vs {
         return None;
     }
     let away = (cell.y - y_mid).signum() != (camera_y - y_mid).signum();
@@ -159,11 +161,15 @@ fn unresolved_ground(
 /// belongs to neither the ground nor the face's other side. `x_mid`, `y_mid`: the
 /// cell's centre, metres.
 pub(crate) fn unresolved_face_along(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> bool {
+    hugs_one_side(cell, x_mid, y_mid, vs) && ground_beside_face(cell, y_mid, vs).is_none()
+}
+
+/// The side test of [`unresolved_face_along`], without the band test.
+fn hugs_one_side(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> bool {
     let off_y = (cell.y - y_mid).abs();
     cell.top - cell.low >= FACE_MIN_M
         && off_y >= FACE_OFF_VOXELS * vs
         && (cell.x - x_mid).abs() <= 0.5 * FACE_OFF_VOXELS * vs
-        && ground_beside_face(cell, y_mid, vs).is_none()
 }
 
 /// Least height between a cell's two surfaces for [`ground_beside_face`] to tell
@@ -409,12 +415,14 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
                 .map(|j| f.cells[j].crest)
                 .fold(reference, f32::max);
             let above = f.cells[c].top - beside;
-            let edge = [iy.checked_sub(1), Some(iy + 1)]
-                .into_iter()
-                .any(|j| j.is_none_or(|j| j >= s.ny || f.region[j] != Region::Belly));
+            let edge = || {
+                [iy.checked_sub(1), Some(iy + 1)]
+                    .into_iter()
+                    .any(|j| j.is_none_or(|j| j >= s.ny || f.region[j] != Region::Belly))
+            };
             let kind = if above > clearance {
                 Some(HazardKind::Belly)
-            } else if f.past[c] && above > r && !edge {
+            } else if f.past[c] && above > r && !edge() {
                 // Rising out of the image more than a wheel radius above the tracks
                 // beside it, which are seen: an obstacle whose top is not seen. How
                 // tall it is, is not known. (An edge cell may hold the side of a
@@ -676,8 +684,8 @@ fn judge_gap(
     }
 }
 
-/// Whether unseen cell (`ix`, `iy`), its ground expected at `z` with slope `k` (dz/dx), fell between the
-/// camera's pixel rows: ground there would be crossed by fewer than
+/// Whether unseen cell (`ix`, `iy`), its ground expected at `z` with slope `k`
+/// (dz/dx), fell between the camera's pixel rows: ground there would be crossed by fewer than
 /// [`SPARSE_ROWS`] rows per cell (far, at low incidence, or a coarse camera: a
 /// 320×240 camera's rows lie 5 cm apart on a 12° descent 3 m out), and the strips
 /// on both sides see ground in that row or the next one either way, within a wheel
@@ -698,19 +706,11 @@ fn between_rows(f: &Frame, ix: usize, iy: usize, (z, k): (f32, f32), r: f32) -> 
         return false;
     }
     let cam = f.camera;
-    let (dx, dy) = (s.x_centre(ix) - cam[0], s.y_centre(iy) - cam[1]);
+    let (dx, dy) = (x - cam[0], s.y_centre(iy) - cam[1]);
     let (d, h) = (dx.hypot(dy), cam[2] - z);
     let range = d.hypot(h);
     let incidence = h.atan2(d) - (-k * dx / d).atan();
-    let camera = &f.cfg.camera;
-    let Some((_, fy, _, _)) = f
-        .cfg
-        .intrinsics_for(camera.width as usize, camera.height as usize)
-        .pinhole
-    else {
-        return false;
-    };
-    let rows = s.voxel_m * incidence.sin() * fy as f32 / range;
+    let rows = s.voxel_m * incidence.sin() * f.fy_px / range;
     rows < SPARSE_ROWS
 }
 

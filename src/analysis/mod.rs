@@ -78,6 +78,8 @@ struct Fixed {
     expected: Vec<bool>,
     expected_count: usize,
     camera: [f32; 3],
+    /// The camera's vertical focal length, pixels.
+    fy_px: f32,
     paths: visibility::ShadowPaths,
 }
 
@@ -123,6 +125,8 @@ pub(crate) struct Frame<'a> {
     pub region: &'a [Region],
     pub cfg: &'a Config,
     pub camera: [f32; 3],
+    /// The camera's vertical focal length, pixels: its rows per radian.
+    pub fy_px: f32,
 }
 
 impl<'a> Frame<'a> {
@@ -139,6 +143,7 @@ impl<'a> Frame<'a> {
             region: &fixed.region,
             cfg: &fixed.cfg,
             camera: fixed.camera,
+            fy_px: fixed.fy_px,
         }
     }
 
@@ -178,6 +183,10 @@ impl Analyzer {
             ));
         }
         let cells = spec.cell_count();
+        let fy_px = config
+            .intrinsics_for(projector.width(), projector.height())
+            .pinhole
+            .map_or(f32::NAN, |(_, fy, _, _)| fy as f32);
         Ok(Analyzer {
             fixed: Fixed {
                 cfg: config.clone(),
@@ -186,6 +195,7 @@ impl Analyzer {
                 expected,
                 expected_count,
                 camera: projector.origin(),
+                fy_px,
                 paths,
             },
             view: View {
