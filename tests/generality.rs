@@ -5,7 +5,7 @@
 //! geometry and the rover's limits.
 
 use rover_terrain::sim::{Element, Extent};
-use rover_terrain::{Config, Decision, HazardKind, Verdict};
+use rover_terrain::{Config, Decision, HazardKind, Side, Verdict};
 
 #[path = "common/scenes.rs"]
 mod scenes;
@@ -208,6 +208,86 @@ fn a_belly_rock_rising_out_of_the_image_is_never_go() {
         v.hazards
     );
     assert_eq!(analyse(vec![rock(0.2)], &c).decision, Decision::Go);
+}
+
+#[test]
+fn a_boulder_whose_far_side_is_hidden_stops_and_a_ramp_out_of_view_still_goes() {
+    // Two 320×240 rigs drawn by the random sweeps. On the first the image's top edge
+    // cuts a 16 cm boulder 1.6 m out (its top is never seen); on the second a 15.5 cm
+    // boulder at 2.14 m hides its far side in its own shadow. Each front, seen
+    // through 5 cm cells, climbs under 30° in steps under a wheel radius: along its
+    // strip alone it is a ramp leaving the view.
+    let coarse = |mut c: Config| {
+        (c.camera.width, c.camera.height) = (320, 240);
+        c
+    };
+    let low = coarse(mounted([0.17, -0.084, 0.564], [-5.76, 35.81, -4.36]));
+    let high = coarse(mounted([0.08, 0.064, 1.145], [-3.99, 44.26, -4.11]));
+    let boulder = |x_m, y_m, radius_m, height_m| Element::Rock {
+        x_m,
+        y_m,
+        radius_m,
+        height_m,
+    };
+    // Each on the rough ground it was drawn on (±2.5 cm).
+    let rough = |correlation_m, seed| Element::Rough {
+        amplitude_m: 0.025,
+        correlation_m,
+        seed,
+    };
+    for (c, rock, ground) in [
+        (
+            &low,
+            boulder(1.606, 0.472, 0.194, 0.159),
+            rough(0.104, 4563623085782585421),
+        ),
+        (
+            &high,
+            boulder(2.141, 0.384, 0.162, 0.155),
+            rough(0.141, 14738105656941176066),
+        ),
+    ] {
+        let scene = vec![ground, rock.clone()];
+        for v in [analyse(scene.clone(), c), analyse_noisy(scene, c, 11)] {
+            assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+            let step = v
+                .hazards
+                .iter()
+                .find(|h| h.kind == HazardKind::Step && h.side == Side::Left)
+                .expect("a step in the left track");
+            let Element::Rock { x_m, radius_m, .. } = rock else {
+                unreachable!()
+            };
+            let foot = (x_m - radius_m) as f32;
+            assert!(
+                (step.distance_m - foot).abs() < 0.15,
+                "step at {} for a rock from {foot}",
+                step.distance_m
+            );
+        }
+    }
+    // On the same rigs a 9 cm rock is climbed, and a climbable ramp under the track
+    // rising out of the image is go.
+    assert_eq!(
+        analyse(vec![boulder(1.606, 0.472, 0.15, 0.09)], &low).decision,
+        Decision::Go
+    );
+    assert_eq!(
+        analyse(vec![boulder(2.141, 0.384, 0.15, 0.09)], &high).decision,
+        Decision::Go
+    );
+    for (c, toe) in [(&low, 1.2), (&high, 1.9)] {
+        for gradient in [15.0, 25.0] {
+            let ramp = Element::ramp(toe, 0.45, gradient, 0.0, LEFT_TRACK);
+            let v = analyse_noisy(vec![ramp], c, 12);
+            assert_eq!(
+                v.decision,
+                Decision::Go,
+                "{gradient}° from {toe} m: {:?}",
+                v.hazards
+            );
+        }
+    }
 }
 
 #[test]

@@ -101,6 +101,107 @@ pub fn steps_and_slopes(
     }
 }
 
+/// Obstacles whose top the camera does not see, standing in a track.
+///
+/// A strip that climbs more than a wheel radius within a wheelbase and then leaves the
+/// view (its next cells unseen: in the shadow of what it climbed, or past the image's
+/// top edge) looks, along that strip alone, like a ramp rising out of the image: its
+/// step test judges only the front it saw, and a boulder's front seen through 5 cm
+/// cells can measure under the slope limit. Across the track the two differ: a ramp
+/// spans the track, so the strips beside rise with it, but a boulder stands on ground
+/// that continues beside it. So when a third or more of what the other strips of the track
+/// within [`HIDDEN_TOP_REACH_M`] see past the exit, within [`HIDDEN_TOP_REACH_M`] of
+/// it, lies more than a wheel radius and rough ground's spread
+/// ([`HIDDEN_TOP_MARGIN_M`]) below the height the climb last reached (its exit, or
+/// the mean of a cell the image's top edge cuts just past it: a lower bound), the
+/// climb is an obstacle higher than a wheel radius with its far side hidden: a step
+/// at its foot (the last cell of the climb at most half a wheel radius above its
+/// lowest).
+///
+/// A diagonal ramp (26° across the rover, 25° steep) moves the strips beside by at
+/// most 6 cm over that lateral distance, well under a wheel radius. The track's two
+/// edge strips take no part: a face along the band's edge (a one-track ramp's side,
+/// the ground beyond a one-track descent) mixes two levels there.
+pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
+    let r = f.cfg.rover.wheel_radius_m as f32;
+    let wheelbase = f.cfg.rover.wheelbase_m as f32;
+    let reach = (HIDDEN_TOP_REACH_M / f.spec.voxel_m).round() as usize;
+    let ground = |ix: usize, iy: usize| {
+        let c = f.spec.cell(ix, iy);
+        (f.seen[c] && !f.past[c])
+            .then_some(surface[c])
+            .filter(|z| z.is_finite())
+    };
+    for region in [Region::Left, Region::Right] {
+        let (Some(first), Some(last)) = (f.strips(region).next(), f.strips(region).last()) else {
+            continue;
+        };
+        let inner = |iy: usize| iy > first && iy < last;
+        for iy in f.strips(region).filter(|&iy| inner(iy)) {
+            for ix in 0..f.spec.nx.saturating_sub(1) {
+                let Some(z_exit) = ground(ix, iy) else {
+                    continue;
+                };
+                if ground(ix + 1, iy).is_some() {
+                    continue;
+                }
+                let top = (ix + 1..(ix + 3).min(f.spec.nx))
+                    .map(|jx| f.spec.cell(jx, iy))
+                    .filter(|&c| f.seen[c] && f.past[c])
+                    .map(|c| f.cells[c].z)
+                    .fold(z_exit, f32::max);
+                let x_exit = f.spec.x_centre(ix);
+                let climb = (0..=ix)
+                    .rev()
+                    .take_while(|&jx| x_exit - f.spec.x_centre(jx) <= wheelbase)
+                    .filter_map(|jx| ground(jx, iy).map(|z| (jx, z)));
+                let Some(base) = climb.clone().map(|(_, z)| z).reduce(f32::min) else {
+                    continue;
+                };
+                if top - base <= r {
+                    continue;
+                }
+                let (mut below, mut all) = (0, 0);
+                for jy in f.strips(region).filter(|&jy| inner(jy) && jy != iy) {
+                    if jy.abs_diff(iy) > reach {
+                        continue;
+                    }
+                    for jx in ix + 1..(ix + 1 + reach).min(f.spec.nx) {
+                        if let Some(z) = ground(jx, jy) {
+                            all += 1;
+                            below += usize::from(z < top - r - HIDDEN_TOP_MARGIN_M);
+                        }
+                    }
+                }
+                if below < HIDDEN_TOP_MIN_CELLS || 3 * below < all {
+                    continue;
+                }
+                let foot = climb
+                    .filter(|&(_, z)| z <= base + 0.5 * r)
+                    .map(|(jx, _)| jx)
+                    .max()
+                    .unwrap_or(ix);
+                verdict.add_hazard(Hazard {
+                    kind: HazardKind::Step,
+                    side: region.side(),
+                    distance_m: f.spec.x_centre(foot).max(0.0),
+                });
+            }
+        }
+    }
+}
+
+/// How far beside and beyond a climb leaving the view [`hidden_tops`] looks for the
+/// ground it stands on, metres: a boulder's radius.
+const HIDDEN_TOP_REACH_M: f32 = 0.25;
+/// How much more than a wheel radius a hidden top must stand above the ground beside
+/// it, metres: rough ground's spread about its mean (σ ≈ 1.25 cm for ±2.5 cm), so a
+/// 9 cm pebble on a bump is not taken for a boulder.
+const HIDDEN_TOP_MARGIN_M: f32 = 0.015;
+/// Fewest cells of ground beside a hidden top, more than a wheel radius below it, for
+/// [`hidden_tops`] to take it for an obstacle.
+const HIDDEN_TOP_MIN_CELLS: usize = 3;
+
 /// In a cell with two surfaces, the ground when the face between them runs along the
 /// strip: the face's points hug one side of the cell while the ground's spread across
 /// it, so the surface whose points centre farther off the strip's centre line is the

@@ -293,6 +293,7 @@ impl Analyzer {
         let frame = Frame::new(&self.fixed, &self.view, cells);
         let scratch = &mut self.scratch;
         crossing::steps_and_slopes(&frame, &mut scratch.strip, &mut scratch.surface, verdict);
+        crossing::hidden_tops(&frame, &scratch.surface, verdict);
         tilt::track_profile(
             &frame,
             &scratch.surface,
