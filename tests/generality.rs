@@ -291,6 +291,36 @@ fn a_boulder_whose_far_side_is_hidden_stops_and_a_ramp_out_of_view_still_goes() 
 }
 
 #[test]
+fn a_face_cell_on_a_descending_tracks_edge_makes_no_drop_off_but_an_edge_does() {
+    // Ground falling away beyond the right track's inner edge, seen with noise by a
+    // camera 1 m high just beside that edge: the strip along the edge has a cell near
+    // the corridor's end holding only the belly band's side face, 12 cm above the
+    // ground around it, then two cells in the edge's shadow. Measured from that cell,
+    // the ground beyond the shadow was a drop-off.
+    let mut c = mounted([0.23717, -0.07828, 1.00641], [0.65969, 34.19567, 3.66973]);
+    c.camera.min_range_m = 0.357;
+    let half_plane = Extent::Band {
+        from_m: -100.0,
+        to_m: -0.2,
+    };
+    let descent = Element::ramp(1.28302, -0.45, -14.59654, 0.0, half_plane);
+    let v = analyse_noisy(vec![descent.clone()], &c, 13057);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    assert_eq!(v.feature.unwrap().workcase, 10);
+    // The same descent breaking off 0.4 m deeper at 2.2 m is a drop-off there.
+    let edge = Element::ramp(2.2, -0.45, -85.0, 0.0, half_plane).capped(Some(0.4));
+    let v = analyse_noisy(vec![descent, edge], &c, 13057);
+    assert_eq!(v.decision, Decision::Stop);
+    assert!(
+        v.hazards
+            .iter()
+            .any(|h| h.kind == HazardKind::DropOff && (h.distance_m - 2.2).abs() < 0.1),
+        "{:?}",
+        v.hazards
+    );
+}
+
+#[test]
 fn a_toe_below_the_image_is_measured_from_the_face_and_flagged() {
     // The paper's Table 2 case 3 with the default mount: the camera sees ground
     // from about 0.64 m, the toe is at 0.474 m.

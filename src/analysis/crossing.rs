@@ -585,16 +585,29 @@ fn median(values: &mut [f32]) -> f32 {
 ///   grazing incidence (under [`GRAZING_DEG`]) is explained: a passable downslope
 ///   seen from afar gives few points per cell, not none because of a hole.
 /// - A gap after seen ground with nothing seen beyond it, or with ground beyond it
-///   more than a wheel radius below both the ground before it and that ground's
-///   slope continued, is a drop-off.
+///   more than a wheel radius below the ground before it (its last cell, that
+///   cell's slope continued, and the line through the last cells), is a drop-off.
+///
+/// A track cell's height is the surface its strip followed (`surface`, from
+/// [`steps_and_slopes`]; NaN elsewhere), other cells' their mean.
 /// - A gap with ground beyond it at a climbable level is the shadow of a low step
 ///   down when that ground explains it (the line of sight to the gap at the far
 ///   ground's height passes below the near edge); otherwise it is unknown ground.
 /// - Neither is a gap whose every cell fell between the camera's pixel rows
 ///   ([`between_rows`]): ground there, continued from before the gap, would be
 ///   crossed by under two rows per cell, and the strips on both sides see it.
-pub fn gaps(f: &Frame, verdict: &mut Verdict) {
+pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let s = f.spec;
+    // A track cell's ground is the surface its strip followed (a face along the
+    // strip mixes two levels in the cell's mean); elsewhere the mean.
+    let ground = |c: usize| {
+        (
+            f.cells[c].x,
+            Some(surface[c])
+                .filter(|z| z.is_finite())
+                .unwrap_or(f.cells[c].z),
+        )
+    };
     let r = f.cfg.rover.wheel_radius_m as f32;
     let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
     let min_run = f.cfg.analysis.gap_min_cells as usize;
@@ -609,9 +622,7 @@ pub fn gaps(f: &Frame, verdict: &mut Verdict) {
             if seen_here || ix == s.nx {
                 if let Some((start, len)) = run.take() {
                     if len >= min_run {
-                        let after = c
-                            .filter(|_| seen_here)
-                            .map(|c| (f.cells[c].x, f.cells[c].z));
+                        let after = c.filter(|_| seen_here).map(ground);
                         let kind = judge_gap(f, iy, start, ix, before, after, r, tan_max);
                         if let Some(kind) = kind {
                             verdict.add_hazard(Hazard {
@@ -623,7 +634,8 @@ pub fn gaps(f: &Frame, verdict: &mut Verdict) {
                     }
                 }
                 if let Some(c) = c.filter(|_| seen_here) {
-                    before.push(f.cells[c].x, f.cells[c].z);
+                    let (x, z) = ground(c);
+                    before.push(x, z);
                 }
                 continue;
             }
@@ -670,10 +682,11 @@ impl Recent {
     }
 
     /// The least-squares line z = slope·x + c through every recent cell, as its
-    /// slope and the RMS of the cells' heights about it (metres): how rough the ground
-    /// before a gap is over [`Self::N`] cells. `None` with fewer than
-    /// [`ROUGH_MIN_CELLS`] cells or spanning under half a metre.
-    fn line(&self) -> Option<(f32, f32)> {
+    /// slope, the RMS of the cells' heights about it (metres: how rough the ground
+    /// before a gap is over [`Self::N`] cells) and its height at the last cell
+    /// (metres: the ground there, which one odd cell does not move). `None` with
+    /// fewer than [`ROUGH_MIN_CELLS`] cells or spanning under half a metre.
+    fn line(&self) -> Option<(f32, f32, f32)> {
         let cells = &self.cells[..self.len];
         let (x0, xl) = (cells.first()?.0, cells.last()?.0);
         if self.len < ROUGH_MIN_CELLS || xl - x0 < 0.5 {
@@ -688,7 +701,11 @@ impl Recent {
             .iter()
             .map(|&(x, z)| (f64::from(z) - p.z(f64::from(x - xl), 0.0)).powi(2))
             .sum();
-        Some((p.a as f32, (ss / cells.len() as f64).sqrt() as f32))
+        Some((
+            p.a as f32,
+            (ss / cells.len() as f64).sqrt() as f32,
+            p.z(0.0, 0.0) as f32,
+        ))
     }
 
     /// Least-squares slope dz/dx of the recent cells within [`Self::SPAN_M`] of the
@@ -742,6 +759,14 @@ fn judge_gap(
     // judged by the step and slope test.
     let k = before.slope().clamp(-tan_max, tan_max);
     let predicted = |x: f32| zb + k * (x - xb);
+    // The same fall measured from the line through the recent cells: a last cell
+    // holding a face's points (a belly band's edge beside a descending track) stands
+    // above the ground and would make the ground beyond a drop.
+    let below_line = |xa: f32, za: f32| {
+        before
+            .line()
+            .is_none_or(|(kl, _, zl)| za < zl + kl.clamp(-tan_max, tan_max) * (xa - xb) - r)
+    };
     let unseen = (start..end).filter(|&j| f.expected[s.cell(j, iy)] && !f.seen[s.cell(j, iy)]);
     let c = f.camera;
     let grazing = unseen.clone().all(|j| {
@@ -775,7 +800,9 @@ fn judge_gap(
                 .all(|j| super::visibility::explained(f, j, iy, predicted(s.x_centre(j))));
             (!hidden && !bumps() && !sampled_out()).then_some(HazardKind::DropOff)
         }
-        Some((xa, za)) if za < zb - r && za < predicted(xa) - r => Some(HazardKind::DropOff),
+        Some((xa, za)) if za < zb - r && za < predicted(xa) - r && below_line(xa, za) => {
+            Some(HazardKind::DropOff)
+        }
         Some((_, za)) => {
             let all_shadowed = unseen
                 .clone()
@@ -825,7 +852,7 @@ const SPARSE_ROWS: f32 = 2.0;
 /// ground (even noisy: a cell's mean height varies by millimetres) casts none worth a
 /// cell, so a drop-off's gap there stays a gap.
 fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -> bool {
-    let (Some((k, rms)), Some((xb, zb))) = (before.line(), before.last()) else {
+    let (Some((k, rms, _)), Some((xb, zb))) = (before.line(), before.last()) else {
         return false;
     };
     let s = f.spec;
