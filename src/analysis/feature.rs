@@ -124,50 +124,9 @@ fn fit_face(
     };
     let mut plane: Option<Plane> = None;
     for iteration in 0..10 {
-        let mut fit = PlaneFit::default();
-        let mut used = 0usize;
-        // Cells weigh by their points, except in the first fit: a cell whose points
-        // are mostly a face turned to the camera (a trench's wall along the band's
-        // edge) has several times more, and would steer the first plane so far that
-        // the residuals could not tell it apart. Once judged by an unweighted plane,
-        // such cells are off it and dropped.
-        let weight = |cell: &crate::grid::Cell| {
-            if iteration == 0 {
-                1.0
-            } else {
-                f64::from(cell.n)
-            }
-        };
-        for (c, cell) in f.cells.iter().enumerate() {
-            if use_cell[c] {
-                fit.add(
-                    f64::from(cell.x),
-                    f64::from(cell.y),
-                    f64::from(height(f, c)),
-                    weight(cell),
-                );
-                used += 1;
-            }
-        }
-        let Some(p) = (used >= 3).then(|| fit.solve()).flatten() else {
+        let Some((p, tol)) = weighted_plane(f, use_cell, iteration) else {
             break;
         };
-        let mut sq = 0.0;
-        let mut spread = Spread::default();
-        for (c, cell) in f.cells.iter().enumerate() {
-            if use_cell[c] {
-                let z = height(f, c);
-                let r = f64::from(z) - p.z(f64::from(cell.x), f64::from(cell.y));
-                sq += weight(cell) * r * r;
-                spread.add(r);
-            }
-        }
-        // Three standard deviations of the residuals, the smaller of the RMS's and the
-        // median's estimate: a strip of cells off the face (a wall's points along a
-        // band edge, a plateau) inflates the RMS and would keep itself in.
-        let rms = (sq / fit.weight()).sqrt();
-        let sigma = spread.sigma().map_or(rms, |m| m.min(rms));
-        let tol = MIN_TOLERANCE_M.max(3.0 * sigma);
         let mut changed = false;
         for ix in 0..s.nx {
             for iy in 0..s.ny {
@@ -197,6 +156,53 @@ fn fit_face(
         }
     }
     plane
+}
+
+/// One fit of [`fit_face`]: the plane through the cells in `use_cell` and the
+/// tolerance about it that keeps a cell on the face (metres), or `None` with under
+/// three cells or a degenerate fit.
+///
+/// Cells weigh by their points, except in the first fit (`iteration` 0): a cell whose
+/// points are mostly a face turned to the camera (a trench's wall along the band's
+/// edge) has several times more, and would steer the first plane so far that the
+/// residuals could not tell it apart. Once judged by an unweighted plane, such cells
+/// are off it and dropped. The tolerance is three standard deviations of the
+/// residuals, the smaller of the RMS's and the median's estimate (a strip of cells off
+/// the face, such as a wall's points along a band edge or a plateau, inflates the RMS
+/// and would keep itself in), and at least [`MIN_TOLERANCE_M`].
+fn weighted_plane(f: &Frame, use_cell: &[bool], iteration: usize) -> Option<(Plane, f64)> {
+    let weight = |cell: &crate::grid::Cell| {
+        if iteration == 0 {
+            1.0
+        } else {
+            f64::from(cell.n)
+        }
+    };
+    let used = || {
+        f.cells
+            .iter()
+            .enumerate()
+            .filter(|&(c, _)| use_cell[c])
+            .map(|(c, cell)| (cell, f64::from(height(f, c))))
+    };
+    let mut fit = PlaneFit::default();
+    for (cell, z) in used() {
+        fit.add(f64::from(cell.x), f64::from(cell.y), z, weight(cell));
+    }
+    if used().count() < 3 {
+        return None;
+    }
+    let p = fit.solve()?;
+    let mut sq = 0.0;
+    let mut spread = Spread::default();
+    for (cell, z) in used() {
+        let r = z - p.z(f64::from(cell.x), f64::from(cell.y));
+        sq += weight(cell) * r * r;
+        spread.add(r);
+    }
+    let rms = (sq / fit.weight()).sqrt();
+    let sigma = spread.sigma().map_or(rms, |m| m.min(rms));
+    Some((p, MIN_TOLERANCE_M.max(3.0 * sigma)))
 }
 
 /// A histogram of absolute residuals in millimetre bins, for their median without
