@@ -321,6 +321,76 @@ fn a_face_cell_on_a_descending_tracks_edge_makes_no_drop_off_but_an_edge_does() 
 }
 
 #[test]
+fn a_step_below_the_image_is_never_go_but_a_ramp_toe_there_is_measured() {
+    // A 320×240 camera 1.1 m high pitched 30° sees the ground from 1.14 m: a 25 cm step
+    // under the left track at 1.05 m is below the image, and the track is seen only as
+    // a plateau a wheel radius and more above the ground the rover stands on.
+    let mut c = mounted([0.076, -0.09, 1.107], [7.32, 30.35, -7.7]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    for height_m in [0.25, -0.25] {
+        let step = Element::Step {
+            x_m: 1.05,
+            height_m,
+            extent: Extent::Left,
+        };
+        for v in [
+            analyse(vec![step.clone()], &c),
+            analyse_noisy(vec![step], &c, 54),
+        ] {
+            assert_ne!(v.decision, Decision::Go, "{height_m} m");
+            assert!(
+                v.hazards.iter().any(|h| h.kind == HazardKind::Unknown
+                    && h.side == Side::Left
+                    && (h.distance_m - 1.05).abs() < 0.1),
+                "{:?}",
+                v.hazards
+            );
+        }
+    }
+    // The camera is rolled: it sees the right track from 0.8 m, where the same step
+    // is seen whole, and is a step.
+    let step = Element::Step {
+        x_m: 1.05,
+        height_m: 0.25,
+        extent: Extent::Right,
+    };
+    let v = analyse(vec![step], &c);
+    assert!(
+        v.hazards
+            .iter()
+            .any(|h| h.kind == HazardKind::Step && h.side == Side::Right),
+        "{:?}",
+        v.hazards
+    );
+    // Farther out the left step is seen whole, and is a step; a climbable ramp whose
+    // toe lies below the image is measured from its face.
+    let step = Element::Step {
+        x_m: 1.6,
+        height_m: 0.25,
+        extent: Extent::Left,
+    };
+    let v = analyse(vec![step], &c);
+    assert!(
+        v.hazards.iter().any(|h| h.kind == HazardKind::Step),
+        "{:?}",
+        v.hazards
+    );
+    for (toe, gradient) in [(0.8, 20.0), (0.9, 25.0), (0.7, -12.0)] {
+        let v = analyse(
+            vec![Element::ramp(toe, 0.45, gradient, 0.0, LEFT_TRACK)],
+            &c,
+        );
+        assert_eq!(
+            v.decision,
+            Decision::Go,
+            "{gradient}° from {toe} m: {:?}",
+            v.hazards
+        );
+        assert!(!v.feature.unwrap().toe_seen);
+    }
+}
+
+#[test]
 fn a_toe_below_the_image_is_measured_from_the_face_and_flagged() {
     // The paper's Table 2 case 3 with the default mount: the camera sees ground
     // from about 0.64 m, the toe is at 0.474 m.

@@ -191,6 +191,83 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     }
 }
 
+/// A rise or fall hidden below the image: the rover stands on its ground (z = 0 at
+/// the origin), so a track whose nearest seen ground lies more than a wheel radius
+/// above or below it changed height somewhere between the rover and the camera's
+/// view, where nothing is seen. When that seen ground lies on one line over its first
+/// [`BLIND_FIT_M`] (within rough ground's spread, [`ROUGH_LINE_RMS_M`]) and, continued
+/// back toward the rover at that passable slope, meets z = 0 at or ahead of the
+/// origin, it is a ramp with its toe below the image (the paper's Table 2 case 3, measured by
+/// the feature analysis); otherwise (a plateau, a step's top, ground below a fall)
+/// the change is unseen: an `unknown` hazard at the track's nearest seen ground, when
+/// half or more of the track's strips (and at least two) show it.
+pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
+    let r = f.cfg.rover.wheel_radius_m as f32;
+    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
+    for region in [Region::Left, Region::Right] {
+        let (mut strips, mut hidden) = (0usize, 0usize);
+        let mut nearest = f32::INFINITY;
+        for iy in f.strips(region) {
+            let ground = |ix: usize| {
+                let c = f.spec.cell(ix, iy);
+                (f.seen[c] && !f.past[c])
+                    .then(|| (f.cells[c].x, surface[c]))
+                    .filter(|(_, z)| z.is_finite())
+            };
+            let Some(first) = (0..f.spec.nx).find(|&ix| ground(ix).is_some()) else {
+                continue;
+            };
+            strips += 1;
+            let x0 = f.spec.x_centre(first);
+            let near = || {
+                (first..f.spec.nx)
+                    .map_while(ground)
+                    .take_while(|(x, _)| *x <= x0 + BLIND_FIT_M)
+            };
+            let mut fit = PlaneFit::default();
+            for (x, z) in near() {
+                fit.add(f64::from(x), 0.0, f64::from(z), 1.0);
+            }
+            let (k, z0, straight) = match fit.solve() {
+                Some(p) => {
+                    let (ss, n) = near().fold((0.0, 0.0), |(ss, n), (x, z)| {
+                        (
+                            ss + (f64::from(z) - p.z(f64::from(x), 0.0)).powi(2),
+                            n + 1.0,
+                        )
+                    });
+                    let rms = (ss / n).sqrt() as f32;
+                    (
+                        p.a as f32,
+                        p.z(f64::from(x0), 0.0) as f32,
+                        rms <= ROUGH_LINE_RMS_M,
+                    )
+                }
+                None => (0.0, ground(first).map_or(0.0, |(_, z)| z), false),
+            };
+            if z0.abs() <= r {
+                continue;
+            }
+            let ramp = straight && k * z0 > 0.0 && k.abs() < tan_max && x0 - z0 / k >= 0.0;
+            if !ramp {
+                hidden += 1;
+                nearest = nearest.min(x0);
+            }
+        }
+        if hidden >= 2 && 2 * hidden >= strips {
+            verdict.add_hazard(Hazard {
+                kind: HazardKind::Unknown,
+                side: region.side(),
+                distance_m: nearest.max(0.0),
+            });
+        }
+    }
+}
+
+/// How much of a track strip's nearest seen ground [`blind_rise`] fits its slope to,
+/// metres.
+const BLIND_FIT_M: f32 = 0.3;
+
 /// How far beside and beyond a climb leaving the view [`hidden_tops`] looks for the
 /// ground it stands on, metres: a boulder's radius.
 const HIDDEN_TOP_REACH_M: f32 = 0.25;

@@ -294,6 +294,7 @@ impl Analyzer {
         let scratch = &mut self.scratch;
         crossing::steps_and_slopes(&frame, &mut scratch.strip, &mut scratch.surface, verdict);
         crossing::hidden_tops(&frame, &scratch.surface, verdict);
+        crossing::blind_rise(&frame, &scratch.surface, verdict);
         tilt::track_profile(
             &frame,
             &scratch.surface,
