@@ -327,54 +327,42 @@ fn a_step_below_the_image_is_never_go_but_a_ramp_toe_there_is_measured() {
     // a plateau a wheel radius and more above the ground the rover stands on.
     let mut c = mounted([0.076, -0.09, 1.107], [7.32, 30.35, -7.7]);
     (c.camera.width, c.camera.height) = (320, 240);
+    let step = |x_m, height_m, extent| Element::Step {
+        x_m,
+        height_m,
+        extent,
+    };
+    let hazard = |v: &Verdict, kind, side, near: f32| {
+        v.hazards
+            .iter()
+            .any(|h| h.kind == kind && h.side == side && (h.distance_m - near).abs() < 0.1)
+    };
     for height_m in [0.25, -0.25] {
-        let step = Element::Step {
-            x_m: 1.05,
-            height_m,
-            extent: Extent::Left,
-        };
-        for v in [
-            analyse(vec![step.clone()], &c),
-            analyse_noisy(vec![step], &c, 54),
-        ] {
+        let scene = vec![step(1.05, height_m, Extent::Left)];
+        for v in [analyse(scene.clone(), &c), analyse_noisy(scene, &c, 54)] {
             assert_ne!(v.decision, Decision::Go, "{height_m} m");
             assert!(
-                v.hazards.iter().any(|h| h.kind == HazardKind::Unknown
-                    && h.side == Side::Left
-                    && (h.distance_m - 1.05).abs() < 0.1),
+                hazard(&v, HazardKind::Unknown, Side::Left, 1.05),
                 "{:?}",
                 v.hazards
             );
         }
     }
-    // The camera is rolled: it sees the right track from 0.8 m, where the same step
-    // is seen whole, and is a step.
-    let step = Element::Step {
-        x_m: 1.05,
-        height_m: 0.25,
-        extent: Extent::Right,
-    };
-    let v = analyse(vec![step], &c);
+    // The camera is rolled: it sees the right track from 0.8 m, where the same step is
+    // seen whole, and is a step; farther out the left step is seen whole too.
+    let v = analyse(vec![step(1.05, 0.25, Extent::Right)], &c);
     assert!(
-        v.hazards
-            .iter()
-            .any(|h| h.kind == HazardKind::Step && h.side == Side::Right),
+        hazard(&v, HazardKind::Step, Side::Right, 1.0),
         "{:?}",
         v.hazards
     );
-    // Farther out the left step is seen whole, and is a step; a climbable ramp whose
-    // toe lies below the image is measured from its face.
-    let step = Element::Step {
-        x_m: 1.6,
-        height_m: 0.25,
-        extent: Extent::Left,
-    };
-    let v = analyse(vec![step], &c);
+    let v = analyse(vec![step(1.6, 0.25, Extent::Left)], &c);
     assert!(
-        v.hazards.iter().any(|h| h.kind == HazardKind::Step),
+        hazard(&v, HazardKind::Step, Side::Left, 1.6),
         "{:?}",
         v.hazards
     );
+    // A climbable ramp whose toe lies below the image is measured from its face.
     for (toe, gradient) in [(0.8, 20.0), (0.9, 25.0), (0.7, -12.0)] {
         let v = analyse(
             vec![Element::ramp(toe, 0.45, gradient, 0.0, LEFT_TRACK)],
