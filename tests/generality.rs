@@ -379,6 +379,46 @@ fn a_step_below_the_image_is_never_go_but_a_ramp_toe_there_is_measured() {
 }
 
 #[test]
+fn a_boulder_whose_foot_is_below_the_image_is_never_go() {
+    // A D435-like camera 0.53 m high sees the ground from 0.62 m: a 15 cm boulder
+    // 0.8 m out is seen from 2-4 cm up its front, so the strips over it climb under a
+    // wheel radius in view, and its back hides in its own shadow.
+    let mut c = mounted([0.276, 0.028, 0.533], [4.75, 26.91, 5.51]);
+    c.camera = rover_terrain::config::CameraConfig {
+        width: 848,
+        height: 480,
+        fx: Some(422.19),
+        fy: Some(423.38),
+        cx: Some(406.81),
+        cy: Some(237.41),
+        min_range_m: 0.366,
+        ..c.camera
+    };
+    let rock = |height_m| Element::Rock {
+        x_m: 0.803,
+        y_m: 0.446,
+        radius_m: 0.188,
+        height_m,
+    };
+    for v in [
+        analyse(vec![rock(0.151)], &c),
+        analyse_noisy(vec![rock(0.151)], &c, 35),
+    ] {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Left),
+            "{:?}",
+            v.hazards
+        );
+    }
+    // A 9 cm rock there is climbed; a climbable ramp with its toe below the image is
+    // measured.
+    assert_eq!(analyse(vec![rock(0.09)], &c).decision, Decision::Go);
+    let v = analyse(vec![Element::ramp(0.55, 0.45, 20.0, 0.0, LEFT_TRACK)], &c);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+}
+
+#[test]
 fn a_toe_below_the_image_is_measured_from_the_face_and_flagged() {
     // The paper's Table 2 case 3 with the default mount: the camera sees ground
     // from about 0.64 m, the toe is at 0.474 m.

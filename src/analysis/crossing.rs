@@ -192,35 +192,42 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 }
 
 /// A rise or fall hidden below the image: the rover stands on its ground (z = 0 at
-/// the origin), so a track whose nearest seen ground lies more than a wheel radius
-/// above or below it changed height somewhere between the rover and the camera's
-/// view, where nothing is seen. When that seen ground lies on one line over its first
+/// the origin), so a track strip whose nearest seen ground (its first
+/// [`BLIND_FIT_M`]) gets more than a wheel radius (and rough ground's spread,
+/// [`HIDDEN_TOP_MARGIN_M`]) above or below it changed height at least partly
+/// between the rover and the camera's view, where nothing is seen (a boulder whose
+/// foot is below the image is seen rising from part of its height), unless the strip
+/// is seen at that ground first (a toe in view: the step and slope test judges it). When that seen ground lies on one line over its first
 /// [`BLIND_FIT_M`] (within rough ground's spread, [`ROUGH_LINE_RMS_M`]) and, continued
 /// back toward the rover at that passable slope, meets z = 0 at or ahead of the
 /// origin, it is a ramp with its toe below the image (the paper's Table 2 case 3, measured by
 /// the feature analysis); otherwise (a plateau, a step's top, ground below a fall)
-/// the change is unseen: an `unknown` hazard at the track's nearest seen ground, when
-/// half or more of the track's strips (and at least two) show it.
+/// the change is unseen: an `unknown` hazard at the nearest such ground, when two or
+/// more strips of a track show it (10 cm: narrower than a wheel; a boulder whose front
+/// is below the image shows it in a few). The track's edge strips take no part, as in
+/// [`hidden_tops`].
 pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let r = f.cfg.rover.wheel_radius_m as f32;
     let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
     for region in [Region::Left, Region::Right] {
-        let (mut strips, mut hidden) = (0usize, 0usize);
+        let (Some(first), Some(last)) = (f.strips(region).next(), f.strips(region).last()) else {
+            continue;
+        };
+        let mut hidden = 0usize;
         let mut nearest = f32::INFINITY;
-        for iy in f.strips(region) {
+        for iy in f.strips(region).filter(|&iy| iy > first && iy < last) {
             let ground = |ix: usize| {
                 let c = f.spec.cell(ix, iy);
                 (f.seen[c] && !f.past[c])
                     .then(|| (f.cells[c].x, surface[c]))
                     .filter(|(_, z)| z.is_finite())
             };
-            let Some(first) = (0..f.spec.nx).find(|&ix| ground(ix).is_some()) else {
+            let Some(start) = (0..f.spec.nx).find(|&ix| ground(ix).is_some()) else {
                 continue;
             };
-            strips += 1;
-            let x0 = f.spec.x_centre(first);
+            let x0 = f.spec.x_centre(start);
             let near = || {
-                (first..f.spec.nx)
+                (start..f.spec.nx)
                     .map_while(ground)
                     .take_while(|(x, _)| *x <= x0 + BLIND_FIT_M)
             };
@@ -243,9 +250,19 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                         rms <= ROUGH_LINE_RMS_M,
                     )
                 }
-                None => (0.0, ground(first).map_or(0.0, |(_, z)| z), false),
+                None => (0.0, ground(start).map_or(0.0, |(_, z)| z), false),
             };
-            if z0.abs() <= r {
+            // The farthest from the rover's ground the strip gets in that stretch, and
+            // whether it is seen at that ground before (the change is then seen
+            // whole, and the step and slope test judges it).
+            let (mut reach, mut at) = (0.0f32, 0);
+            for (i, (_, z)) in near().enumerate() {
+                if z.abs() > reach.abs() {
+                    (reach, at) = (z, i);
+                }
+            }
+            let from_ground = near().take(at).any(|(_, z)| z.abs() <= HIDDEN_TOP_MARGIN_M);
+            if reach.abs() <= r + HIDDEN_TOP_MARGIN_M || from_ground {
                 continue;
             }
             let ramp = straight && k * z0 > 0.0 && k.abs() < tan_max && x0 - z0 / k >= 0.0;
@@ -254,7 +271,7 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 nearest = nearest.min(x0);
             }
         }
-        if hidden >= 2 && 2 * hidden >= strips {
+        if hidden >= 2 {
             verdict.add_hazard(Hazard {
                 kind: HazardKind::Unknown,
                 side: region.side(),
