@@ -2,7 +2,7 @@
 //! in the wheel tracks, anything too tall under the belly, and ground that should be
 //! seen but is not (gaps, drop-offs).
 
-use super::plane::PlaneFit;
+use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region, StripCell};
 use crate::grid::Cell;
 use crate::verdict::{Hazard, HazardKind, Verdict};
@@ -126,18 +126,9 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let r = f.cfg.rover.wheel_radius_m as f32;
     let wheelbase = f.cfg.rover.wheelbase_m as f32;
     let reach = (HIDDEN_TOP_REACH_M / f.spec.voxel_m).round() as usize;
-    let ground = |ix: usize, iy: usize| {
-        let c = f.spec.cell(ix, iy);
-        (f.seen[c] && !f.past[c])
-            .then_some(surface[c])
-            .filter(|z| z.is_finite())
-    };
+    let ground = |ix: usize, iy: usize| followed(f, surface, f.spec.cell(ix, iy));
     for region in [Region::Left, Region::Right] {
-        let (Some(first), Some(last)) = (f.strips(region).next(), f.strips(region).last()) else {
-            continue;
-        };
-        let inner = |iy: usize| iy > first && iy < last;
-        for iy in f.strips(region).filter(|&iy| inner(iy)) {
+        for iy in inner_strips(f, region) {
             for ix in 0..f.spec.nx.saturating_sub(1) {
                 let Some(z_exit) = ground(ix, iy) else {
                     continue;
@@ -162,10 +153,8 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     continue;
                 }
                 let (mut below, mut all) = (0, 0);
-                for jy in f.strips(region).filter(|&jy| inner(jy) && jy != iy) {
-                    if jy.abs_diff(iy) > reach {
-                        continue;
-                    }
+                for jy in inner_strips(f, region).filter(|&jy| jy != iy && jy.abs_diff(iy) <= reach)
+                {
                     for jx in ix + 1..(ix + 1 + reach).min(f.spec.nx) {
                         if let Some(z) = ground(jx, jy) {
                             all += 1;
@@ -191,36 +180,33 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     }
 }
 
-/// A rise or fall hidden below the image: the rover stands on its ground (z = 0 at
+/// A rise or fall hidden below the image. The rover stands on its ground (z = 0 at
 /// the origin), so a track strip whose nearest seen ground (its first
 /// [`BLIND_FIT_M`]) gets more than a wheel radius (and rough ground's spread,
-/// [`HIDDEN_TOP_MARGIN_M`]) above or below it changed height at least partly
-/// between the rover and the camera's view, where nothing is seen (a boulder whose
-/// foot is below the image is seen rising from part of its height), unless the strip
-/// is seen at that ground first (a toe in view: the step and slope test judges it). When that seen ground lies on one line over its first
-/// [`BLIND_FIT_M`] (within rough ground's spread, [`ROUGH_LINE_RMS_M`]) and, continued
-/// back toward the rover at that passable slope, meets z = 0 at or ahead of the
-/// origin, it is a ramp with its toe below the image (the paper's Table 2 case 3, measured by
-/// the feature analysis); otherwise (a plateau, a step's top, ground below a fall)
-/// the change is unseen: an `unknown` hazard at the nearest such ground, when two or
-/// more strips of a track show it (10 cm: narrower than a wheel; a boulder whose front
-/// is below the image shows it in a few). The track's edge strips take no part, as in
-/// [`hidden_tops`].
+/// [`HIDDEN_TOP_MARGIN_M`]) above or below it changed height at least partly between
+/// the rover and the camera's view, where nothing is seen (a boulder whose foot is
+/// below the image is seen rising from part of its height), unless the strip is seen
+/// at that ground first (a toe in view: the step and slope test judges it).
+///
+/// When that seen ground lies on one line over its first [`BLIND_FIT_M`] (within
+/// rough ground's spread, [`ROUGH_LINE_RMS_M`]) and, continued back toward the rover
+/// at that passable slope, meets z = 0 at or ahead of the origin, it is a ramp with
+/// its toe below the image (the paper's Table 2 case 3, measured by the feature
+/// analysis). Otherwise (a plateau, a step's top, ground below a fall, a boulder) the
+/// change is unseen: an `unknown` hazard at the nearest such ground, when two or more
+/// strips of a track show it (10 cm: narrower than a wheel; a boulder whose front is
+/// below the image shows it in a few). The track's edge strips take no part
+/// ([`inner_strips`]).
 pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let r = f.cfg.rover.wheel_radius_m as f32;
     let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
     for region in [Region::Left, Region::Right] {
-        let (Some(first), Some(last)) = (f.strips(region).next(), f.strips(region).last()) else {
-            continue;
-        };
         let mut hidden = 0usize;
         let mut nearest = f32::INFINITY;
-        for iy in f.strips(region).filter(|&iy| iy > first && iy < last) {
+        for iy in inner_strips(f, region) {
             let ground = |ix: usize| {
                 let c = f.spec.cell(ix, iy);
-                (f.seen[c] && !f.past[c])
-                    .then(|| (f.cells[c].x, surface[c]))
-                    .filter(|(_, z)| z.is_finite())
+                followed(f, surface, c).map(|z| (f.cells[c].x, z))
             };
             let Some(start) = (0..f.spec.nx).find(|&ix| ground(ix).is_some()) else {
                 continue;
@@ -231,25 +217,12 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     .map_while(ground)
                     .take_while(|(x, _)| *x <= x0 + BLIND_FIT_M)
             };
-            let mut fit = PlaneFit::default();
-            for (x, z) in near() {
-                fit.add(f64::from(x), 0.0, f64::from(z), 1.0);
-            }
-            let (k, z0, straight) = match fit.solve() {
-                Some(p) => {
-                    let (ss, n) = near().fold((0.0, 0.0), |(ss, n), (x, z)| {
-                        (
-                            ss + (f64::from(z) - p.z(f64::from(x), 0.0)).powi(2),
-                            n + 1.0,
-                        )
-                    });
-                    let rms = (ss / n).sqrt() as f32;
-                    (
-                        p.a as f32,
-                        p.z(f64::from(x0), 0.0) as f32,
-                        rms <= ROUGH_LINE_RMS_M,
-                    )
-                }
+            let (k, z0, straight) = match line_fit(near()) {
+                Some((p, rms)) => (
+                    p.a as f32,
+                    p.z(f64::from(x0), 0.0) as f32,
+                    rms as f32 <= ROUGH_LINE_RMS_M,
+                ),
                 None => (0.0, ground(start).map_or(0.0, |(_, z)| z), false),
             };
             // The farthest from the rover's ground the strip gets in that stretch, and
@@ -295,6 +268,40 @@ const HIDDEN_TOP_MARGIN_M: f32 = 0.015;
 /// Fewest cells of ground beside a hidden top, more than a wheel radius below it, for
 /// [`hidden_tops`] to take it for an obstacle.
 const HIDDEN_TOP_MIN_CELLS: usize = 3;
+
+/// The strips of a track but its two edge strips, where a face along the band's edge
+/// mixes two levels ([`hidden_tops`], [`blind_rise`]).
+fn inner_strips<'a>(f: &'a Frame, region: Region) -> impl Iterator<Item = usize> + 'a {
+    let first = f.strips(region).next();
+    let last = f.strips(region).last();
+    f.strips(region)
+        .filter(move |&iy| first.is_some_and(|a| iy > a) && last.is_some_and(|b| iy < b))
+}
+
+/// The ground the strip followed in cell `c` (`surface`, from [`steps_and_slopes`]),
+/// metres, when the cell is seen whole: not past the horizon, and in a track.
+fn followed(f: &Frame, surface: &[f32], c: usize) -> Option<f32> {
+    (f.seen[c] && !f.past[c])
+        .then_some(surface[c])
+        .filter(|z| z.is_finite())
+}
+
+/// The least-squares line z = a·x + c through `points` (x, z), and the RMS of their
+/// heights about it, metres; `None` without two distinct x.
+fn line_fit(points: impl Iterator<Item = (f32, f32)> + Clone) -> Option<(Plane, f64)> {
+    let mut fit = PlaneFit::default();
+    for (x, z) in points.clone() {
+        fit.add(f64::from(x), 0.0, f64::from(z), 1.0);
+    }
+    let p = fit.solve()?;
+    let (ss, n) = points.fold((0.0, 0.0), |(ss, n), (x, z)| {
+        (
+            ss + (f64::from(z) - p.z(f64::from(x), 0.0)).powi(2),
+            n + 1.0,
+        )
+    });
+    Some((p, (ss / n).sqrt()))
+}
 
 /// In a cell with two surfaces, the ground when the face between them runs along the
 /// strip: the face's points hug one side of the cell while the ground's spread across
@@ -517,13 +524,8 @@ fn line_windows(
 /// The least-squares slope |dz/dx| of a run's wheel heights when they lie on one line
 /// within [`ROUGH_LINE_RMS_M`], else `None`.
 fn line_slope(run: &[StripCell]) -> Option<f32> {
-    let p = wheel_line(run)?;
-    let ms = run
-        .iter()
-        .map(|c| (f64::from(c.wheel) - p.z(f64::from(c.x), 0.0)).powi(2))
-        .sum::<f64>()
-        / run.len() as f64;
-    (ms.sqrt() <= f64::from(ROUGH_LINE_RMS_M)).then_some(p.a.abs() as f32)
+    let (p, rms) = line_fit(run.iter().map(|c| (c.x, c.wheel)))?;
+    (rms <= f64::from(ROUGH_LINE_RMS_M)).then_some(p.a.abs() as f32)
 }
 
 /// Largest RMS distance of wheel heights from their line for [`climb_slope`] to take
@@ -546,7 +548,7 @@ fn fitted_slope(run: &[StripCell]) -> f32 {
 
 /// The least-squares line `z = a·x + c` through a run's wheel heights (as a plane with
 /// b = 0); `None` with fewer than two distinct x.
-fn wheel_line(run: &[StripCell]) -> Option<super::plane::Plane> {
+fn wheel_line(run: &[StripCell]) -> Option<Plane> {
     let mut fit = PlaneFit::default();
     for c in run {
         fit.add(f64::from(c.x), 0.0, f64::from(c.wheel), 1.0);
@@ -681,15 +683,15 @@ fn median(values: &mut [f32]) -> f32 {
 /// - A gap after seen ground with nothing seen beyond it, or with ground beyond it
 ///   more than a wheel radius below the ground before it (its last cell, that
 ///   cell's slope continued, and the line through the last cells), is a drop-off.
-///
-/// A track cell's height is the surface its strip followed (`surface`, from
-/// [`steps_and_slopes`]; NaN elsewhere), other cells' their mean.
 /// - A gap with ground beyond it at a climbable level is the shadow of a low step
 ///   down when that ground explains it (the line of sight to the gap at the far
 ///   ground's height passes below the near edge); otherwise it is unknown ground.
 /// - Neither is a gap whose every cell fell between the camera's pixel rows
 ///   ([`between_rows`]): ground there, continued from before the gap, would be
 ///   crossed by under two rows per cell, and the strips on both sides see it.
+///
+/// A track cell's height is the surface its strip followed (`surface`, from
+/// [`steps_and_slopes`]; NaN elsewhere), other cells' their mean.
 pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let s = f.spec;
     // A track cell's ground is the surface its strip followed (a face along the
@@ -786,20 +788,8 @@ impl Recent {
         if self.len < ROUGH_MIN_CELLS || xl - x0 < 0.5 {
             return None;
         }
-        let mut fit = PlaneFit::default();
-        for &(x, z) in cells {
-            fit.add(f64::from(x - xl), 0.0, f64::from(z), 1.0);
-        }
-        let p = fit.solve()?;
-        let ss: f64 = cells
-            .iter()
-            .map(|&(x, z)| (f64::from(z) - p.z(f64::from(x - xl), 0.0)).powi(2))
-            .sum();
-        Some((
-            p.a as f32,
-            (ss / cells.len() as f64).sqrt() as f32,
-            p.z(0.0, 0.0) as f32,
-        ))
+        let (p, rms) = line_fit(cells.iter().map(|&(x, z)| (x - xl, z)))?;
+        Some((p.a as f32, rms as f32, p.z(0.0, 0.0) as f32))
     }
 
     /// Least-squares slope dz/dx of the recent cells within [`Self::SPAN_M`] of the

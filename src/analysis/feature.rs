@@ -186,10 +186,12 @@ fn weighted_plane(f: &Frame, use_cell: &[bool], iteration: usize) -> Option<(Pla
             .map(|(c, cell)| (cell, f64::from(height(f, c))))
     };
     let mut fit = PlaneFit::default();
+    let mut n = 0usize;
     for (cell, z) in used() {
         fit.add(f64::from(cell.x), f64::from(cell.y), z, weight(cell));
+        n += 1;
     }
-    if used().count() < 3 {
+    if n < 3 {
         return None;
     }
     let p = fit.solve()?;
