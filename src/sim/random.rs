@@ -59,7 +59,17 @@ pub fn workcase_scene<R: Rng>(rng: &mut R, i: usize) -> (Terrain, Expectation) {
 /// ramp, low rock under the belly, tall block under the belly, drop-off, low step
 /// down, high step down; random distance 0.9-2.4 m and size.
 pub fn hazard_scene<R: Rng>(rng: &mut R, i: usize) -> (Terrain, Expectation) {
-    let x: f64 = rng.gen_range(0.9..2.4);
+    hazard_scene_within(rng, i, 0.9..2.4)
+}
+
+/// [`hazard_scene`] with its edge (step, toe, rock, drop) at a random distance in
+/// `at`, metres: for a rig that sees a different span of ground than the default.
+pub fn hazard_scene_within<R: Rng>(
+    rng: &mut R,
+    i: usize,
+    at: std::ops::Range<f64>,
+) -> (Terrain, Expectation) {
+    let x: f64 = rng.gen_range(at);
     let e = [Extent::Full, Extent::Left, Extent::Right][rng.gen_range(0..3)];
     let ramp = |g: f64| Element::Ramp {
         toe_x_m: x,
