@@ -254,6 +254,108 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     }
 }
 
+/// A climb the view ends in, steeper than the rover climbs: how high it goes is not
+/// seen. Where a strip's view ends (its first cell the image's top edge cuts, or seen
+/// past one), the ground it climbed over the last [`BLIND_FIT_M`] before it and the
+/// part of the cut cells that is seen (their upper surface, `crest`) are fitted with
+/// one line from the last cell at the climb's foot (within rough ground's spread,
+/// [`HIDDEN_TOP_MARGIN_M`], of the lowest). When that line is steeper than the slope
+/// limit and the cut cells' top stands [`STEEP_EXIT_RISE_M`] or more above the foot,
+/// the strip saw the front of a wall, a step or a ramp too steep to climb, and the
+/// image ended before its top: the step and slope test sees under a wheel radius of
+/// it (or, on a steep ramp, the wheel's rounding at the toe), and the feature analysis
+/// measures a face it cannot call climbable. Two or more inner strips of a track or
+/// of the belly band showing it (10 cm) give an `unknown` hazard at the nearest foot,
+/// unless the other tests already found a hazard on that side or one nearer than the
+/// foot (the rover stops already, and the verdict says why). Runs last of the crossing
+/// tests.
+/// A ramp rising out of view at a passable slope is not this: it stays go, measured.
+/// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
+/// out of view in them.
+pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
+    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
+    let s = f.spec;
+    let found = [Region::Left, Region::Belly, Region::Right].map(|region| {
+        let (mut strips, mut nearest) = (0usize, f32::INFINITY);
+        for iy in inner_strips(f, region) {
+            let ground = |ix: usize| {
+                let c = s.cell(ix, iy);
+                let z = if region == Region::Belly {
+                    (f.seen[c] && !f.past[c]).then_some(f.cells[c].z)
+                } else {
+                    followed(f, surface, c)
+                };
+                z.map(|z| (f.cells[c].x, z))
+            };
+            let Some(h) = (1..s.nx).find(|&ix| {
+                let c = s.cell(ix, iy);
+                f.seen[c] && f.past[c]
+            }) else {
+                continue;
+            };
+            let x_h = s.x_centre(h);
+            let before = || {
+                (0..h)
+                    .rev()
+                    .map_while(ground)
+                    .take_while(|&(x, _)| x_h - x <= BLIND_FIT_M)
+            };
+            let Some(base) = before().map(|(_, z)| z).reduce(f32::min) else {
+                continue;
+            };
+            let Some(foot) = before().find(|&(_, z)| z <= base + HIDDEN_TOP_MARGIN_M) else {
+                continue;
+            };
+            let cut = (h..(h + 3).min(s.nx))
+                .map(|ix| &f.cells[s.cell(ix, iy)])
+                .zip(h..)
+                .filter(|&(_, ix)| {
+                    let c = s.cell(ix, iy);
+                    f.seen[c] && f.past[c]
+                })
+                .map(|(c, _)| c);
+            let top = cut.clone().map(|c| c.top).fold(f32::NEG_INFINITY, f32::max);
+            if top - foot.1 < STEEP_EXIT_RISE_M {
+                continue;
+            }
+            // A face across the strip within one cut cell (its points span the rise
+            // in 5 cm: steeper than 45°; its upper surface beyond its lower one more
+            // than beside it, unlike a ramp's side face along the strip), or the climb
+            // and the cut cells' upper surface on one line steeper than the limit (a
+            // face the cell boundary splits, a steep ramp).
+            let face = cut.clone().any(|c| {
+                let (dx, dy) = (c.crest_xy[0] - c.foot_xy[0], c.crest_xy[1] - c.foot_xy[1]);
+                c.top - c.low >= STEEP_EXIT_RISE_M && dx > dy.abs()
+            });
+            let climb = before().take_while(|&(x, _)| x > foot.0);
+            let points = std::iter::once(foot)
+                .chain(climb)
+                .chain(cut.map(|c| (c.crest_xy[0], c.crest)));
+            let steep = face || line_fit(points).is_some_and(|(p, _)| p.a as f32 >= tan_max);
+            if steep {
+                strips += 1;
+                nearest = nearest.min(foot.0);
+            }
+        }
+        // Judged against the other tests' hazards only: a band beside this one
+        // showing the same wall does not hide it.
+        let judged =
+            (verdict.hazards.iter()).any(|h| h.side == region.side() || h.distance_m <= nearest);
+        (region, strips >= 2 && !judged, nearest)
+    });
+    for (region, _, nearest) in found.into_iter().filter(|&(_, new, _)| new) {
+        verdict.add_hazard(Hazard {
+            kind: HazardKind::Unknown,
+            side: region.side(),
+            distance_m: nearest.max(0.0),
+        });
+    }
+}
+
+/// Least rise from a climb's foot to the top of the cut cells the view ends in for
+/// [`steep_exit`], metres: more than rough ground's peak to peak (±2.5 cm).
+const STEEP_EXIT_RISE_M: f32 = 0.05;
+
 /// How much of a track strip's nearest seen ground [`blind_rise`] fits its slope to,
 /// metres.
 const BLIND_FIT_M: f32 = 0.3;
