@@ -49,57 +49,81 @@ pub fn draw(scene: &Scene<'_>) -> Canvas {
     let cp = cell_px(s.nx);
     let (w, h) = size(s.nx, s.ny);
     let mut c = Canvas::new(w, h, rgb(250, 250, 250));
-    let v = s.voxel_m;
-    let len = s.nx as f32 * v;
-    // Rover frame → pixels.
-    let px = |y: f32| to_pixel(s, 0.0, y).0;
-    let py = |x: f32| to_pixel(s, x, 0.0).1;
-    let (map_w, map_h) = (s.ny as u32 * cp, s.nx as u32 * cp);
-
-    // Cells.
+    let len = s.nx as f32 * s.voxel_m;
+    let map_w = s.ny as u32 * cp;
     for ix in 0..s.nx {
         for iy in 0..s.ny {
-            let i = s.cell(ix, iy);
-            let (x0, y0) = (px(s.y_centre(iy) + v / 2.0), py(s.x_centre(ix) + v / 2.0));
-            if scene.seen(i) {
-                let z = f64::from(scene.cells[i].z);
-                let t = (z - Z_RANGE_M.0) / (Z_RANGE_M.1 - Z_RANGE_M.0);
-                let mut colour = turbo(t);
-                // Remembered, out of view: faded toward grey as its confidence falls
-                // (with the travel and time since it was seen, and the range it was
-                // seen from; fully grey where it would be forgotten), dotted.
-                let remembered = scene.remembered_confidence(ix, iy);
-                if let Some(k) = remembered {
-                    colour = fade(colour, 0.3 + 0.6 * (1.0 - k));
-                }
-                c.fill(x0, y0, cp, cp, colour);
-                if remembered.is_some() {
-                    c.set(x0 + cp as i32 / 2, y0 + cp as i32 / 2, rgb(40, 40, 40));
-                }
-            } else if scene.expected[i] {
-                // Should be seen, is not: hatched.
-                c.fill(x0, y0, cp, cp, rgb(215, 215, 215));
-                for k in 0..cp as i32 {
-                    for j in 0..cp as i32 {
-                        if (k + j + x0 + y0) % 5 == 0 {
-                            c.set(x0 + k, y0 + j, rgb(110, 110, 110));
-                        }
-                    }
-                }
-            } else {
-                c.fill(x0, y0, cp, cp, rgb(70, 70, 70));
-            }
+            cell(&mut c, scene, ix, iy, cp);
         }
     }
     // Distance grid every 0.5 m with labels.
     let mut d = 0.0f32;
     while d <= len + 1e-3 {
-        let y = py(d);
+        let y = to_pixel(s, d, 0.0).1;
         c.line((LEFT, y), (LEFT + map_w as i32, y), rgb(255, 255, 255), 1);
         c.text(&format!("{d:.1} m"), 4, y - 5, SMALL, rgb(40, 40, 40));
         d += 0.5;
     }
-    // Wheel tracks (black) and the belly band (white).
+    bands(&mut c, scene, s.nx as u32 * cp);
+    // The toe line.
+    let px = |y: f32| to_pixel(s, 0.0, y).0;
+    let py = |x: f32| to_pixel(s, x, 0.0).1;
+    if let Some(((lo, hi), toe)) = scene.toe_line() {
+        let (ya, yb) = (hi, lo);
+        let colour = rgb(200, 0, 200);
+        c.line((px(ya), py(toe(ya))), (px(yb), py(toe(yb))), colour, 3);
+        c.text("toe", px(ya) + 4, py(toe(ya)) - 14, BODY, colour);
+    }
+    for hz in &scene.verdict.hazards {
+        hazard_mark(&mut c, scene, hz);
+    }
+    scale(&mut c, s, cp);
+    panel(&mut c, scene, LEFT + map_w as i32 + 24);
+    c
+}
+
+/// Cell (`ix`, `iy`) as a `cp`-pixel square: seen, coloured by height (faded and
+/// dotted when remembered out of view); should be seen but is not, hatched; out of
+/// view, dark grey.
+fn cell(c: &mut Canvas, scene: &Scene<'_>, ix: usize, iy: usize, cp: u32) {
+    let s = scene.spec;
+    let v = s.voxel_m;
+    let i = s.cell(ix, iy);
+    let (x0, y0) = to_pixel(s, s.x_centre(ix) + v / 2.0, s.y_centre(iy) + v / 2.0);
+    if scene.seen(i) {
+        let z = f64::from(scene.cells[i].z);
+        let t = (z - Z_RANGE_M.0) / (Z_RANGE_M.1 - Z_RANGE_M.0);
+        let mut colour = turbo(t);
+        // Remembered, out of view: faded toward grey as its confidence falls
+        // (with the travel and time since it was seen, and the range it was
+        // seen from; fully grey where it would be forgotten), dotted.
+        let remembered = scene.remembered_confidence(ix, iy);
+        if let Some(k) = remembered {
+            colour = fade(colour, 0.3 + 0.6 * (1.0 - k));
+        }
+        c.fill(x0, y0, cp, cp, colour);
+        if remembered.is_some() {
+            c.set(x0 + cp as i32 / 2, y0 + cp as i32 / 2, rgb(40, 40, 40));
+        }
+    } else if scene.expected[i] {
+        // Should be seen, is not: hatched.
+        c.fill(x0, y0, cp, cp, rgb(215, 215, 215));
+        for k in 0..cp as i32 {
+            for j in 0..cp as i32 {
+                if (k + j + x0 + y0) % 5 == 0 {
+                    c.set(x0 + k, y0 + j, rgb(110, 110, 110));
+                }
+            }
+        }
+    } else {
+        c.fill(x0, y0, cp, cp, rgb(70, 70, 70));
+    }
+}
+
+/// The wheel tracks (outlined black) and the belly band (white) along the map's
+/// `map_h` pixels, named above it.
+fn bands(c: &mut Canvas, scene: &Scene<'_>, map_h: u32) {
+    let px = |y: f32| to_pixel(scene.spec, 0.0, y).0;
     let r = &scene.config.rover;
     let (b, o) = (r.belly_half_width_m as f32, r.track_outer_m as f32);
     for (lo, hi) in [(b, o), (-o, -b)] {
@@ -116,54 +140,41 @@ pub fn draw(scene: &Scene<'_>) -> Canvas {
         let x = px(y) - (label.len() as i32 * 6) / 2;
         c.text(label, x, TOP - 14, SMALL, rgb(40, 40, 40));
     }
+}
 
-    // The toe line.
-    if let Some(((lo, hi), toe)) = scene.toe_line() {
-        let (ya, yb) = (hi, lo);
-        c.line(
-            (px(ya), py(toe(ya))),
-            (px(yb), py(toe(yb))),
-            rgb(200, 0, 200),
-            3,
-        );
-        c.text("toe", px(ya) + 4, py(toe(ya)) - 14, BODY, rgb(200, 0, 200));
-    }
-    // Hazards where they are: a bar across their side and a marked dot.
-    for hz in &scene.verdict.hazards {
-        let (lo, hi) = match hz.side {
-            Side::Left => (b, o),
-            Side::Right => (-o, -b),
-            Side::Centre if matches!(hz.kind, HazardKind::Unknown | HazardKind::Tilt) => (-o, o),
-            Side::Centre => (-b, b),
-        };
-        let y = py(hz.distance_m);
-        c.line((px(hi), y), (px(lo), y), rgb(230, 30, 30), 4);
-        let cx = px(scene.side_centre(hz.side));
-        c.fill(cx - 6, y - 6, 13, 13, rgb(230, 30, 30));
-        c.outline(cx - 6, y - 6, 13, 13, rgb(255, 255, 255), 1);
-        let name = hazard_name(hz.kind);
-        c.fill(
-            cx + 9,
-            y - 8,
-            name.len() as u32 * 7 + 4,
-            15,
-            rgb(255, 255, 255),
-        );
-        c.text(name, cx + 11, y - 7, BODY, rgb(200, 0, 0));
-    }
-    // The rover, and a 1 m scale bar.
-    let base = TOP + map_h as i32;
-    let mid = px(0.0);
+/// A hazard where it is: a bar across its side and a marked, named dot.
+fn hazard_mark(c: &mut Canvas, scene: &Scene<'_>, hz: &crate::Hazard) {
+    let px = |y: f32| to_pixel(scene.spec, 0.0, y).0;
+    let r = &scene.config.rover;
+    let (b, o) = (r.belly_half_width_m as f32, r.track_outer_m as f32);
+    let (lo, hi) = match hz.side {
+        Side::Left => (b, o),
+        Side::Right => (-o, -b),
+        Side::Centre if matches!(hz.kind, HazardKind::Unknown | HazardKind::Tilt) => (-o, o),
+        Side::Centre => (-b, b),
+    };
+    let y = to_pixel(scene.spec, hz.distance_m, 0.0).1;
+    c.line((px(hi), y), (px(lo), y), rgb(230, 30, 30), 4);
+    let cx = px(scene.side_centre(hz.side));
+    c.fill(cx - 6, y - 6, 13, 13, rgb(230, 30, 30));
+    c.outline(cx - 6, y - 6, 13, 13, rgb(255, 255, 255), 1);
+    let name = hazard_name(hz.kind);
+    let label_w = name.len() as u32 * 7 + 4;
+    c.fill(cx + 9, y - 8, label_w, 15, rgb(255, 255, 255));
+    c.text(name, cx + 11, y - 7, BODY, rgb(200, 0, 0));
+}
+
+/// The rover's place below the map and a 1 m scale bar.
+fn scale(c: &mut Canvas, s: &GridSpec, cp: u32) {
+    let base = TOP + (s.nx as u32 * cp) as i32;
+    let mid = to_pixel(s, 0.0, 0.0).0;
     c.text("^ rover (x = 0)", mid - 45, base + 6, BODY, rgb(0, 0, 0));
-    let bar = (1.0 / v * cp as f32).round() as i32;
+    let bar = (1.0 / s.voxel_m * cp as f32).round() as i32;
     let sy = base + 40;
     c.line((LEFT, sy), (LEFT + bar, sy), rgb(0, 0, 0), 3);
     c.line((LEFT, sy - 6), (LEFT, sy + 6), rgb(0, 0, 0), 2);
     c.line((LEFT + bar, sy - 6), (LEFT + bar, sy + 6), rgb(0, 0, 0), 2);
     c.text("1 m", LEFT + bar + 8, sy - 6, BODY, rgb(0, 0, 0));
-
-    panel(&mut c, scene, LEFT + map_w as i32 + 24);
-    c
 }
 
 fn hazard_name(k: HazardKind) -> &'static str {
