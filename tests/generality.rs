@@ -685,6 +685,41 @@ fn rough_descents_seen_at_grazing_incidence_are_go_and_rough_drop_offs_stop() {
 }
 
 #[test]
+fn a_rough_descent_crossed_by_under_one_row_per_cell_is_go_and_a_drop_off_there_stops() {
+    // A Kinect v2 0.55 m high sees a rough 14.6° descent at about 7° incidence past
+    // 2.6 m: under one pixel row per cell, so runs of cells several strips wide get
+    // one or two points each, on the ground, or none. That was a drop-off.
+    let mut c = mounted([0.231, -0.058, 0.55], [1.481, 29.967, -7.297]);
+    (c.camera.width, c.camera.height) = (512, 424);
+    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
+    c.camera.min_range_m = 0.4;
+    let rough = Element::Rough {
+        amplitude_m: 0.025,
+        correlation_m: 0.1732,
+        seed: 15293324616560050789,
+    };
+    let (toe, g) = (1.0587, -14.602);
+    let descent = Element::ramp(toe, 0.0, g, 0.0, Extent::Full);
+    let v = analyse(vec![rough.clone(), descent.clone()], &c);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    assert_eq!(v.feature.map(|f| f.workcase), Some(8));
+    // The same descent breaking off 0.5 m deep at 2.85 m, three cells before the
+    // corridor's end: what lies past the edge gets no points, and a drop-off it stays.
+    let drop = Element::Step {
+        x_m: 2.85,
+        height_m: -0.5,
+        extent: Extent::Full,
+    };
+    let v = analyse(vec![rough, descent, drop], &c);
+    assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
+    assert!(
+        v.hazards.iter().any(|h| h.kind == HazardKind::DropOff),
+        "{:?}",
+        v.hazards
+    );
+}
+
+#[test]
 fn a_wall_or_a_steep_ramp_the_view_ends_in_is_never_go() {
     // Random rigs on which the image's top edge cuts an obstacle's front before a
     // wheel radius of it is seen: a 23 cm step under the right track seen 7 cm up

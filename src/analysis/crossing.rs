@@ -256,9 +256,10 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 
 /// A climb the view ends in, steeper than the rover climbs: how high it goes is not
 /// seen. Where a strip's view ends (its first cell the image's top edge cuts, or seen
-/// past one), the ground it climbed over the last [`BLIND_FIT_M`] before it and the
-/// part of the cut cells that is seen (their upper surface, `crest`) are fitted with
-/// one line from the last cell at the climb's foot (within rough ground's spread,
+/// past one), the ground it climbed over the last wheelbase before it (over less,
+/// rough ground's bumps steepen a 24° ramp past 30°) and the part of the cut cells
+/// that is seen (their upper surface, `crest`) are fitted with one line from the
+/// last cell at the climb's foot (within rough ground's spread,
 /// [`HIDDEN_TOP_MARGIN_M`], of the lowest). When that line is steeper than the slope
 /// limit and the cut cells' top stands [`STEEP_EXIT_RISE_M`] or more above the foot,
 /// the strip saw the front of a wall, a step or a ramp too steep to climb, and the
@@ -274,6 +275,7 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// out of view in them.
 pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
+    let wheelbase = f.cfg.rover.wheelbase_m as f32;
     let s = f.spec;
     let found = [Region::Left, Region::Belly, Region::Right].map(|region| {
         let (mut strips, mut nearest) = (0usize, f32::INFINITY);
@@ -298,7 +300,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 (0..h)
                     .rev()
                     .map_while(ground)
-                    .take_while(|&(x, _)| x_h - x <= BLIND_FIT_M)
+                    .take_while(|&(x, _)| x_h - x <= wheelbase)
             };
             let Some(base) = before().map(|(_, z)| z).reduce(f32::min) else {
                 continue;
@@ -971,9 +973,9 @@ fn judge_gap(
     // Seen beside the strip where the camera's rows fall too sparsely to give every
     // cell points.
     let sampled_out = || {
-        unseen
-            .clone()
-            .all(|j| between_rows(f, j, iy, (predicted(s.x_centre(j)), k), r))
+        let ground = |j: usize| (predicted(s.x_centre(j)), k);
+        unseen.clone().all(|j| between_rows(f, j, iy, ground(j), r))
+            || sparse_ground(f, iy, unseen.clone().map(|j| (j, ground(j))))
     };
     match after {
         None => {
@@ -1016,17 +1018,50 @@ fn between_rows(f: &Frame, ix: usize, iy: usize, (z, k): (f32, f32), r: f32) -> 
             })
         })
     });
-    if !beside_seen {
-        return false;
-    }
+    beside_seen && rows_per_cell(f, ix, iy, (z, k)) < SPARSE_ROWS
+}
+
+/// How many of the camera's pixel rows cross cell (`ix`, `iy`) of ground at height
+/// `z` with slope `k` (dz/dx): `cell · sin(incidence) · fy / range`.
+fn rows_per_cell(f: &Frame, ix: usize, iy: usize, (z, k): (f32, f32)) -> f32 {
+    let s = f.spec;
     let cam = f.camera;
-    let (dx, dy) = (x - cam[0], s.y_centre(iy) - cam[1]);
+    let (dx, dy) = (s.x_centre(ix) - cam[0], s.y_centre(iy) - cam[1]);
     let (d, h) = (dx.hypot(dy), cam[2] - z);
     let range = d.hypot(h);
     let incidence = h.atan2(d) - (-k * dx / d).atan();
-    let rows = s.voxel_m * incidence.sin() * f.fy_px / range;
-    rows < SPARSE_ROWS
+    s.voxel_m * incidence.sin() * f.fy_px / range
 }
+
+/// Whether the unseen cells `(ix, (z, k))` of strip `iy` (their ground expected at
+/// `z` with slope `k`) are ground the camera's rows cross too sparsely to give a
+/// cell the points it needs, and not a hole: every cell gets under [`SPARSE_ROWS`]
+/// rows, and the few points it got lie on the ground continued (within
+/// [`SPARSE_GROUND_M`]) in at least half the cells and in one of the last two. Rough
+/// ground descending far out, seen from a low camera, gives runs of such cells
+/// several strips wide, where [`between_rows`] finds no seen strip beside them. A
+/// drop-off's shadow gets no points (a ray past the edge meets the lower ground far
+/// beyond), and the lower ground beyond a shadow lies below the continued ground.
+fn sparse_ground(f: &Frame, iy: usize, cells: impl Iterator<Item = (usize, (f32, f32))>) -> bool {
+    let s = f.spec;
+    let (mut n, mut on_ground, mut last_on_ground) = (0usize, 0usize, 0usize);
+    for (ix, (z, k)) in cells {
+        if rows_per_cell(f, ix, iy, (z, k)) >= SPARSE_ROWS {
+            return false;
+        }
+        let c = &f.cells[s.cell(ix, iy)];
+        n += 1;
+        if c.n > 0 && (c.z - (z + k * (c.x - s.x_centre(ix)))).abs() <= SPARSE_GROUND_M {
+            on_ground += 1;
+            last_on_ground = n;
+        }
+    }
+    n > 0 && 2 * on_ground >= n && last_on_ground + 1 >= n
+}
+
+/// How far from the ground continued the few points of a sparsely crossed cell may
+/// lie for [`sparse_ground`], metres: rough ground's peak to peak (±2.5 cm).
+const SPARSE_GROUND_M: f32 = 0.05;
 
 /// Pixel rows per cell under which a cell may get none (rows fall at their own
 /// spacing, the cells at theirs).
