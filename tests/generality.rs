@@ -802,3 +802,45 @@ fn a_wall_or_a_steep_ramp_the_view_ends_in_is_never_go() {
         assert_eq!(v.decision, Decision::Go, "{element:?}: {:?}", v.hazards);
     }
 }
+
+#[test]
+fn a_step_a_cell_or_two_past_the_images_bottom_edge_is_never_go() {
+    // A Kinect v2 1.1 m high pitched only 18°: the image's bottom edge meets the
+    // ground at 1.25 m. A 20 cm step under the right track at 1.31 m was seen from
+    // one cell of ground before it; a wheel over that cell rests on the step's face
+    // (within a wheel radius of it), so the wheel heights the step test compares
+    // started at the step's top, and the verdict was go.
+    let mut c = mounted([0.274, -0.003, 1.099], [0.929, 18.403, 4.941]);
+    (c.camera.width, c.camera.height) = (512, 424);
+    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
+    c.camera.min_range_m = 0.321;
+    let step = |x_m: f64, height_m: f64| Element::Step {
+        x_m,
+        height_m,
+        extent: Extent::Right,
+    };
+    for (x, h) in [(1.31, 0.201), (1.31, 0.12), (1.36, 0.12)] {
+        for v in [
+            analyse(vec![step(x, h)], &c),
+            analyse_noisy(vec![step(x, h)], &c, 18),
+        ] {
+            assert_eq!(v.decision, Decision::Stop, "{x} {h}: {:?}", v.feature);
+            assert!(
+                v.hazards
+                    .iter()
+                    .any(|h| h.side == Side::Right && h.kind == HazardKind::Step),
+                "{x} {h}: {:?}",
+                v.hazards
+            );
+        }
+    }
+    // A step under a wheel radius there is climbed; ramps up to the limit whose toe
+    // lies at the image's bottom edge are measured from it.
+    assert_eq!(analyse(vec![step(1.31, 0.09)], &c).decision, Decision::Go);
+    for g in [15.0, 25.0, 29.0] {
+        for toe in [1.24, 1.28, 1.31, 1.36] {
+            let ramp = Element::ramp(toe, 0.0, g, 0.0, Extent::Right);
+            assert_go(&analyse(vec![ramp], &c), 5, toe, g, None);
+        }
+    }
+}

@@ -501,8 +501,9 @@ fn wheel_heights(strip: &mut [StripCell], r: f32) {
         let (xi, mut h) = (strip[i].x, strip[i].z);
         if !strip[i].past {
             let rim = |j: usize| {
-                let dx = (strip[j].x - xi).abs();
-                (dx < r && !strip[j].past).then(|| strip[j].z - (r - (r * r - dx * dx).sqrt()))
+                (!strip[j].past)
+                    .then(|| on_rim(strip[j].z, (strip[j].x - xi).abs(), r))
+                    .flatten()
             };
             for j in (0..i).rev() {
                 if strip[j + 1].ix > strip[j].ix + 1 {
@@ -511,7 +512,13 @@ fn wheel_heights(strip: &mut [StripCell], r: f32) {
                 let Some(z) = rim(j) else { break };
                 h = h.max(z);
             }
-            for j in i + 1..strip.len() {
+            // The first cell of a run is where the strip's view of the ground starts:
+            // the wheel comes to it over that ground carried on (what is before it is
+            // not seen; the gap and hidden-rise tests judge that), so a face ahead does
+            // not hold it up. Held up, a step a cell or two past the image's bottom
+            // edge or a shadow is seen only from near its top.
+            let run_start = i == 0 || strip[i].ix > strip[i - 1].ix + 1;
+            for j in (i + 1..strip.len()).take_while(|_| !run_start) {
                 if strip[j].ix > strip[j - 1].ix + 1 {
                     break;
                 }
@@ -521,6 +528,13 @@ fn wheel_heights(strip: &mut [StripCell], r: f32) {
         }
         strip[i].wheel = h;
     }
+}
+
+/// Where the bottom of a wheel of radius `r` stands, metres, when its rim rests on
+/// ground at height `z` that lies `dx` metres (horizontally) before or behind its axle;
+/// `None` when that ground is beyond the rim's reach.
+fn on_rim(z: f32, dx: f32, r: f32) -> Option<f32> {
+    (dx < r).then(|| z - (r - (r * r - dx * dx).sqrt()))
 }
 
 /// Steps and slopes along one strip's seen cells (see [`steps_and_slopes`]).
