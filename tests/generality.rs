@@ -844,3 +844,47 @@ fn a_step_a_cell_or_two_past_the_images_bottom_edge_is_never_go() {
         }
     }
 }
+
+#[test]
+fn a_one_track_ramp_rising_out_of_view_lifts_no_belly_cell_beside_it() {
+    // A D435-like camera 1.13 m high: a 22.6° ramp under the left track rises out of
+    // the image's top edge at 2.75 m. There the belly band's edge cells hold the
+    // ramp's side face up to 0.76 m, and the track cells beside them, cut by the
+    // image's top edge, only their lower part (0.38 m): measured against that, the
+    // side face stood under the belly, and the verdict was a belly stop.
+    let mut c = mounted([0.059, 0.031, 1.134], [0.432, 35.928, -3.715]);
+    c.camera = rover_terrain::config::CameraConfig {
+        width: 848,
+        height: 480,
+        fx: Some(429.11),
+        fy: Some(430.14),
+        cx: Some(422.18),
+        cy: Some(228.79),
+        min_range_m: 0.306,
+        ..c.camera
+    };
+    let (toe, g, alpha) = (0.8699, 22.648, 2.2935);
+    let ramp = || Element::ramp(toe, 0.45, g, alpha, LEFT_TRACK);
+    assert_go(&analyse(vec![ramp()], &c), 3, toe, g, None);
+    let v = analyse_noisy(vec![ramp()], &c, 22);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    assert_eq!(v.feature.map(|f| f.workcase), Some(3));
+    // On that rig a ramp too steep to climb still stops, and so does a block under
+    // the belly where the view ends.
+    let v = analyse(vec![Element::ramp(toe, 0.45, 35.0, alpha, LEFT_TRACK)], &c);
+    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    let block = Element::Block {
+        x_m: 2.7,
+        y_m: 0.0,
+        length_m: 0.25,
+        width_m: 0.25,
+        height_m: 0.45,
+    };
+    let v = analyse(vec![block], &c);
+    assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
+    assert!(
+        v.hazards.iter().any(|h| h.kind == HazardKind::Belly),
+        "{:?}",
+        v.hazards
+    );
+}

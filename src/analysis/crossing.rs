@@ -721,13 +721,23 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
             }
             // Beside a track, the band's edge cells hold the side face of whatever
             // stands in the track: it is as high as the track there, not under the belly.
+            // A track cell the image's top edge cuts (or past the horizon) is at least
+            // as high as its top (a ramp rising out of view: its upper surface there is
+            // only partly seen).
             let beside = [iy.checked_sub(1), Some(iy + 1)]
                 .into_iter()
                 .flatten()
                 .filter(|&j| j < s.ny && f.region[j] != Region::Belly)
                 .map(|j| s.cell(ix, j))
                 .filter(|&j| f.seen[j])
-                .map(|j| f.cells[j].crest)
+                .map(|j| {
+                    let cell = &f.cells[j];
+                    if f.past[j] {
+                        cell.top.max(cell.crest)
+                    } else {
+                        cell.crest
+                    }
+                })
                 .fold(reference, f32::max);
             let above = f.cells[c].top - beside;
             let edge = || {
