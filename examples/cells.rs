@@ -2,6 +2,8 @@
 //! or an array of them, on the command line), seen cells as heights in cm (`^` where the image's top edge
 //! cuts the cell), unseen expected cells as `?`. With `STRIP=IY` in the environment,
 //! also every cell of strip IY: mean, top, low, crest and foot heights, cut or not.
+//! With `CONFIG=FILE` (a TOML configuration, as `sweep`'s `DUMP` writes one for a
+//! random rig), that mount and camera instead of the default.
 use rover_terrain::sim::{self, Element, Terrain};
 use rover_terrain::{Config, Pipeline};
 
@@ -14,7 +16,10 @@ fn main() {
     } else {
         vec![serde_json::from_str(&arg).unwrap()]
     };
-    let config = Config::default();
+    let config = match std::env::var("CONFIG") {
+        Ok(path) => Config::load(std::path::Path::new(&path)).unwrap(),
+        Err(_) => Config::default(),
+    };
     let mut frame = sim::render(&Terrain::new(elements), &config);
     if let Some(seed) = std::env::args().nth(2).and_then(|s| s.parse().ok()) {
         sim::KinectNoise {

@@ -5,7 +5,9 @@
 //! `sim::families` on the default rig or on random mounts and cameras, or
 //! `-- hazards N SEED random` for the go/stop edges on random rigs, each edge where
 //! the rig sees the tracks. `ONLY=3,7` checks just those scenes of the sweep. The last
-//! line counts the failures and, of them, the gos where a stop was due.
+//! line counts the failures and, of them, the gos where a stop was due. `DUMP=DIR`
+//! writes each failing scene's terrain (`N.json`, for `cells`) and configuration
+//! (`N.toml`, for `cells`' `CONFIG` and `rover-terrain inspect --config`) there.
 
 use rand::SeedableRng;
 use rover_terrain::sim::{self, families, random, KinectNoise};
@@ -81,6 +83,15 @@ fn main() {
             }
             if !fails.is_empty() {
                 failures += 1;
+                if let Ok(dir) = std::env::var("DUMP") {
+                    let dir = std::path::Path::new(&dir);
+                    std::fs::create_dir_all(dir).expect("DUMP is a writable directory");
+                    let json =
+                        serde_json::to_string(&terrain.elements).expect("terrain serialises");
+                    std::fs::write(dir.join(format!("{i}.json")), json).expect("DUMP writable");
+                    let toml = toml::to_string(&config).expect("configuration serialises");
+                    std::fs::write(dir.join(format!("{i}.toml")), toml).expect("DUMP writable");
+                }
                 println!(
                     "FAIL #{i} noisy={noisy} {:?} mount={:?} cam={}x{}: {fails:?} hazards={:?} feature={:?}",
                     terrain.elements, config.mount, config.camera.width, config.camera.height, v.hazards, v.feature
