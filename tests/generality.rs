@@ -834,9 +834,31 @@ fn a_step_a_cell_or_two_past_the_images_bottom_edge_is_never_go() {
             );
         }
     }
-    // A step under a wheel radius there is climbed; ramps up to the limit whose toe
-    // lies at the image's bottom edge are measured from it.
-    assert_eq!(analyse(vec![step(1.31, 0.09)], &c).decision, Decision::Go);
+    // Steps just over a wheel radius whose foot is below the image's bottom edge
+    // (the first cell seen holds only the face's top, or none of it) are not seen
+    // rising: the track is unknown there, never go. Under a wheel radius they are
+    // climbed; ramps up to the limit whose toe lies at the image's bottom edge are
+    // measured from it.
+    for (x, h) in [(1.2, 0.115), (1.27, 0.118), (1.27, 0.124)] {
+        for v in [
+            analyse(vec![step(x, h)], &c),
+            analyse_noisy(vec![step(x, h)], &c, 18),
+        ] {
+            assert_ne!(v.decision, Decision::Go, "{x} {h}: {:?}", v.feature);
+            assert!(
+                v.hazards.iter().any(|h| h.side == Side::Right),
+                "{x} {h}: {:?}",
+                v.hazards
+            );
+        }
+    }
+    for (x, h) in [(1.31, 0.09), (1.2, 0.10), (1.27, 0.10)] {
+        assert_eq!(
+            analyse(vec![step(x, h)], &c).decision,
+            Decision::Go,
+            "{x} {h}"
+        );
+    }
     for g in [15.0, 25.0, 29.0] {
         for toe in [1.24, 1.28, 1.31, 1.36] {
             let ramp = Element::ramp(toe, 0.0, g, 0.0, Extent::Right);

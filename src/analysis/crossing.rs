@@ -183,19 +183,23 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// A rise or fall hidden below the image. The rover stands on its ground (z = 0 at
 /// the origin), so a track strip whose nearest seen ground (its first
 /// [`BLIND_FIT_M`]) gets more than a wheel radius (and rough ground's spread,
-/// [`HIDDEN_TOP_MARGIN_M`]) above or below it changed height at least partly between
-/// the rover and the camera's view, where nothing is seen (a boulder whose foot is
-/// below the image is seen rising from part of its height), unless the strip is seen
-/// at that ground first (a toe in view: the step and slope test judges it).
+/// [`HIDDEN_TOP_MARGIN_M`]) above or below it, or lies on one line (within
+/// [`ROUGH_LINE_RMS_M`]) whose mean level is over a wheel radius from it, changed
+/// height at least partly between the rover and the camera's view, where nothing is
+/// seen (a boulder whose foot is below the image is seen rising from part of its
+/// height), unless the strip is seen at that ground first (a toe in view: the step
+/// and slope test judges it).
 ///
 /// When that seen ground lies on one line over its first [`BLIND_FIT_M`] (within
 /// rough ground's spread, [`ROUGH_LINE_RMS_M`]) and, continued back toward the rover
-/// at that passable slope, meets z = 0 at or ahead of the origin, it is a ramp with
-/// its toe below the image (the paper's Table 2 case 3, measured by the feature
-/// analysis). Otherwise (a plateau, a step's top, ground below a fall, a boulder) the
-/// change is unseen: an `unknown` hazard at the nearest such ground, when two or more
-/// strips of a track show it (10 cm: narrower than a wheel; a boulder whose front is
-/// below the image shows it in a few). The track's edge strips take no part
+/// at that passable slope, meets z = 0 at or ahead of the origin, with and without its
+/// first cell (which the image's bottom edge cuts: a step's top seen with the upper
+/// part of its face fits a gentle line back to the rover), it is a ramp with its toe
+/// below the image (the paper's Table 2 case 3, measured by the feature analysis).
+/// Otherwise (a plateau, a step's top, ground below a fall, a boulder) the change is
+/// unseen: an `unknown` hazard at the nearest such ground, when two or more strips of
+/// a track show it (10 cm: narrower than a wheel; a boulder whose front is below the
+/// image shows it in a few). The track's edge strips take no part
 /// ([`inner_strips`]).
 pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let r = f.cfg.rover.wheel_radius_m as f32;
@@ -217,13 +221,18 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     .map_while(ground)
                     .take_while(|(x, _)| *x <= x0 + BLIND_FIT_M)
             };
-            let (k, z0, straight) = match line_fit(near()) {
-                Some((p, rms)) => (
-                    p.a as f32,
-                    p.z(f64::from(x0), 0.0) as f32,
-                    rms as f32 <= ROUGH_LINE_RMS_M,
-                ),
-                None => (0.0, ground(start).map_or(0.0, |(_, z)| z), false),
+            // The line through the stretch from its `skip`th cell: slope, height at
+            // x0, and whether it holds within rough ground's spread.
+            let fit = |skip: usize| {
+                line_fit(near().skip(skip)).map(|(p, rms)| {
+                    let (k, z0) = (p.a as f32, p.z(f64::from(x0), 0.0) as f32);
+                    (k, z0, rms as f32 <= ROUGH_LINE_RMS_M)
+                })
+            };
+            // Continued back at a passable slope, it meets z = 0 at or ahead of the
+            // origin: a ramp whose toe is below the image.
+            let toe_ahead = |(k, z0, straight): (f32, f32, bool)| {
+                straight && k * z0 > 0.0 && k.abs() < tan_max && x0 - z0 / k >= 0.0
             };
             // The farthest from the rover's ground the strip gets in that stretch, and
             // whether it is seen at that ground before (the change is then seen
@@ -235,10 +244,21 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 }
             }
             let from_ground = near().take(at).any(|(_, z)| z.abs() <= HIDDEN_TOP_MARGIN_M);
-            if reach.abs() <= r + HIDDEN_TOP_MARGIN_M || from_ground {
+            // The first cell is the one the image's bottom edge cuts: it may hold
+            // only part of a face (the top of a step whose foot is not seen), so the
+            // ground from the next cell on must tell the same story. Ground that
+            // lies on one line has no bumps to allow for: its mean level over a
+            // wheel radius from the rover's ground is a change that big (a 12 cm
+            // step whose foot is below the image stands level at 12 cm).
+            let (sum, n) = near()
+                .skip(1)
+                .fold((0.0f32, 0.0f32), |(s, n), (_, z)| (s + z, n + 1.0));
+            let rest = fit(1);
+            let level_over = rest.is_some_and(|(_, _, straight)| straight) && sum / n > r;
+            if (reach.abs() <= r + HIDDEN_TOP_MARGIN_M && !level_over) || from_ground {
                 continue;
             }
-            let ramp = straight && k * z0 > 0.0 && k.abs() < tan_max && x0 - z0 / k >= 0.0;
+            let ramp = fit(0).is_some_and(toe_ahead) && rest.is_none_or(toe_ahead);
             if !ramp {
                 hidden += 1;
                 nearest = nearest.min(x0);
