@@ -254,7 +254,7 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .skip(1)
                 .fold((0.0f32, 0.0f32), |(s, n), (_, z)| (s + z, n + 1.0));
             let rest = fit(1);
-            let level_over = rest.is_some_and(|(_, _, straight)| straight) && sum / n > r;
+            let level_over = rest.is_some_and(|(_, _, straight)| straight) && (sum / n).abs() > r;
             if (reach.abs() <= r + HIDDEN_TOP_MARGIN_M && !level_over) || from_ground {
                 continue;
             }
