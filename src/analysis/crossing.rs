@@ -96,7 +96,8 @@ pub fn steps_and_slopes(
                 });
             }
             wheel_heights(strip, r);
-            strip_hazards(strip, region, (r, tan_max, wheelbase), vs, verdict);
+            let min_gap = f.cfg.analysis.gap_min_cells as usize;
+            strip_hazards(strip, region, (r, tan_max, wheelbase, min_gap), vs, verdict);
         }
     }
 }
@@ -561,7 +562,7 @@ fn on_rim(z: f32, dx: f32, r: f32) -> Option<f32> {
 fn strip_hazards(
     strip: &[StripCell],
     region: Region,
-    (r, tan_max, wheelbase): (f32, f32, f32),
+    (r, tan_max, wheelbase, min_gap): (f32, f32, f32, usize),
     vs: f32,
     verdict: &mut Verdict,
 ) {
@@ -573,7 +574,7 @@ fn strip_hazards(
             if dz.abs() <= r {
                 continue;
             }
-            if holey(&strip[i..=j]) {
+            if holey(&strip[i..=j], min_gap) {
                 break; // unseen ground in between: the gap test judges it
             }
             if (dz > 0.0 && a.past) || (dz < 0.0 && b.past) {
@@ -602,10 +603,14 @@ fn strip_hazards(
     }
 }
 
-/// Whether consecutive seen cells of a run are more than one cell apart somewhere
-/// (a hole: what lies there is unknown, so no slope or step is measured across it).
-fn holey(run: &[StripCell]) -> bool {
-    run.windows(2).any(|w| w[1].ix > w[0].ix + 1)
+/// Whether consecutive seen cells of a run are `min_gap` or more unseen cells apart
+/// somewhere (a hole the gap test judges: what lies there is unknown, so no slope or
+/// step is measured across it). Across a shorter hole, which the gap test leaves
+/// alone, the step test measures: a step down seen from high above hides only the
+/// cell just past its edge (a 22 cm step 0.57 m out under a camera 0.93 m high),
+/// and the ground beyond, seen a wheel radius lower, proves the fall.
+fn holey(run: &[StripCell], min_gap: usize) -> bool {
+    run.windows(2).any(|w| w[1].ix > w[0].ix + min_gap)
 }
 
 /// Whether every cell between the ends lies on the straight line between them
@@ -1177,7 +1182,7 @@ mod tests {
         strip_hazards(
             &run,
             Region::Left,
-            (0.11, 30f32.to_radians().tan(), 0.6),
+            (0.11, 30f32.to_radians().tan(), 0.6, 2),
             VS,
             &mut v,
         );
@@ -1186,6 +1191,46 @@ mod tests {
             .copied()
             .filter(|h| h.kind == HazardKind::Slope)
             .collect()
+    }
+
+    /// The hazards `strip_hazards` reports on flat ground at z = 0 from 1.0 m that
+    /// falls by `fall` after `hole` unseen cells past 1.45 m (gaps from 2 cells).
+    fn across_hole(hole: usize, fall: f32) -> Vec<Hazard> {
+        let mut run: Vec<StripCell> = (0..10)
+            .map(|i| (i, 0.0))
+            .chain((10 + hole..30).map(|i| (i, fall)))
+            .map(|(i, z)| StripCell {
+                x: 1.0 + 0.05 * i as f32,
+                z,
+                ix: 20 + i,
+                past: false,
+                wheel: z,
+            })
+            .collect();
+        wheel_heights(&mut run, 0.11);
+        let mut v = Verdict::default();
+        let limits = (0.11, 30f32.to_radians().tan(), 0.6, 2);
+        strip_hazards(&run, Region::Right, limits, VS, &mut v);
+        v.hazards.to_vec()
+    }
+
+    #[test]
+    fn a_fall_across_a_hole_shorter_than_a_gap_is_a_step_and_across_a_gap_is_not_measured() {
+        // One unseen cell (a step's shadow seen from high above): the fall is measured.
+        let h = across_hole(1, -0.22);
+        assert_eq!(h.len(), 1, "{h:?}");
+        assert_eq!(
+            (h[0].kind, h[0].side),
+            (HazardKind::Step, crate::verdict::Side::Right)
+        );
+        assert!((h[0].distance_m - 1.5).abs() < 0.06, "{h:?}");
+        // Under a wheel radius, it is driven down.
+        assert!(across_hole(1, -0.09).is_empty());
+        // Two or more unseen cells are a gap: the gap test judges it, not this one.
+        assert!(across_hole(2, -0.22).is_empty());
+        assert!(across_hole(0, -0.22)
+            .iter()
+            .any(|h| h.kind == HazardKind::Step));
     }
 
     /// A pseudo-random bump field of ±2.5 cm, correlated over ~10 cm.
