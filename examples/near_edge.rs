@@ -12,6 +12,12 @@
 //!
 //! There is no other bar: unknown and stop are both right here (a hazard below the
 //! image is not seen, only its effect on the ground beyond it).
+//!
+//! `-- N SEED passable` is the control: on the rigs (of N) whose view ends inside the
+//! corridor, a climbable ramp (10-27°, under one track or across the corridor) whose
+//! toe lies in the last 0.35 m of what the rig sees, where
+//! it rises out of the image within a few cells. It should be go; every other verdict
+//! is printed with its hazards, and the last line counts them.
 
 use rand::{Rng, SeedableRng};
 use rover_terrain::sim::{self, families, Element, Extent, KinectNoise, Terrain};
@@ -22,11 +28,46 @@ fn main() {
     let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(200);
     let seed: u64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(1);
     let far = args.get(3).map(String::as_str) == Some("far");
+    let passable = args.get(3).map(String::as_str) == Some("passable");
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let (mut total, mut gos) = (0, 0);
+    let (mut total, mut flagged) = (0, 0);
     for i in 0..n {
         let config = families::Rig::random(&mut rng).config;
-        let (near, _) = families::footprint(&config);
+        let (near, end) = families::footprint(&config);
+        if passable {
+            // Only rigs whose view ends inside the corridor: else the ramp would rise
+            // out of the corridor, not out of the image.
+            if end > config.analysis.corridor_length_m - 0.1 {
+                continue;
+            }
+            let toe = rng.gen_range(end - 0.35..end - 0.02);
+            let gradient = rng.gen_range(10.0..27.0);
+            let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
+            let terrain = Terrain::new(vec![Element::ramp(toe, 0.0, gradient, 0.0, extent)]);
+            let frame = sim::render(&terrain, &config);
+            let mut pipeline = Pipeline::new(config.clone()).expect("a random rig is a valid rig");
+            for noisy in [false, true] {
+                let mut f = frame.clone();
+                if noisy {
+                    KinectNoise {
+                        seed: seed * 1000 + i as u64,
+                        ..Default::default()
+                    }
+                    .apply(&mut f, config.camera.hfov_deg);
+                }
+                let v = pipeline.process(&f).expect("frame fits");
+                total += 1;
+                if v.decision == Decision::Go {
+                    continue;
+                }
+                flagged += 1;
+                println!(
+                    "NOT GO #{i} noisy={noisy} end={end:.3} {:?} cam={}x{} hazards={:?}",
+                    terrain.elements, config.camera.width, config.camera.height, v.hazards
+                );
+            }
+            continue;
+        }
         let x = if far {
             rng.gen_range(near..near + 1.2)
         } else {
@@ -71,7 +112,7 @@ fn main() {
             if v.decision != Decision::Go {
                 continue;
             }
-            gos += 1;
+            flagged += 1;
             println!(
                 "GO #{i} noisy={noisy} near={near:.3} {:?} mount={:?} cam={}x{} feature={:?}",
                 terrain.elements,
@@ -90,5 +131,6 @@ fn main() {
             }
         }
     }
-    println!("{total} frames, {gos} go");
+    let counted = if passable { "not go" } else { "go" };
+    println!("{total} frames, {flagged} {counted}");
 }

@@ -983,3 +983,58 @@ fn a_step_down_whose_shadow_is_one_cell_long_is_never_go() {
         assert_go(&v, 9, 1.6, -12.0, None);
     }
 }
+
+#[test]
+fn a_steep_ramp_seen_rising_a_few_centimetres_before_the_view_ends_is_never_go() {
+    // `near_edge -- 300 5 far` #218: a Kinect v1 0.6 m high pitched 39° sees the
+    // ground to about 1.9 m; a 36° ramp under the left track with its toe at 1.82 m is
+    // seen rising 4.4 cm before the image's top edge cuts it, in every inner strip of
+    // the track. That is under the wheel radius the step test needs and under the
+    // 5 cm one strip needs to tell a front from a bump: go, workcase 3, 35.8° (27.3°
+    // noisy).
+    let mut c = mounted([0.138, 0.0407, 0.6015], [-1.306, 38.956, -6.578]);
+    c.camera.min_range_m = 0.4135;
+    let steep = Element::ramp(1.8238, 0.0, 36.26, 0.0, Extent::Left);
+    for v in [
+        analyse(vec![steep.clone()], &c),
+        analyse_noisy(vec![steep.clone()], &c, 5218),
+        analyse_noisy(vec![steep.clone()], &c, 7),
+    ] {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        assert!(
+            v.hazards
+                .iter()
+                .any(|h| h.side == Side::Left && (h.distance_m - 1.83).abs() < 0.1),
+            "{:?}",
+            v.hazards
+        );
+    }
+    // Climbable ramps rising out of view the same way, rough ground at the view's
+    // end, and a low step seen whole stay go on that rig.
+    for gradient in [15.0, 22.0] {
+        for extent in [Extent::Left, Extent::Full] {
+            let ramp = Element::ramp(1.8238, 0.0, gradient, 0.0, extent);
+            for v in [
+                analyse(vec![ramp.clone()], &c),
+                analyse_noisy(vec![ramp.clone()], &c, 5218),
+            ] {
+                assert_eq!(v.decision, Decision::Go, "{ramp:?}: {:?}", v.hazards);
+            }
+        }
+    }
+    for seed in [1, 2, 3] {
+        let rough = Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m: 0.15,
+            seed,
+        };
+        let v = analyse_noisy(vec![rough], &c, seed);
+        assert_eq!(v.decision, Decision::Go, "rough {seed}: {:?}", v.hazards);
+    }
+    let low_step = Element::Step {
+        x_m: 1.5,
+        height_m: 0.06,
+        extent: Extent::Left,
+    };
+    assert_eq!(analyse(vec![low_step], &c).decision, Decision::Go);
+}

@@ -291,6 +291,13 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// unless the other tests already found a hazard on that side or one nearer than the
 /// foot (the rover stops already, and the verdict says why). Runs last of the crossing
 /// tests.
+///
+/// A climb of under [`STEEP_EXIT_RISE_M`] into the cut cells can be a bump of rough
+/// ground in one strip, but not across the band: bumps 10-20 cm long lift two or
+/// three strips at a time. So a steep line over at least [`STEEP_EXIT_SHORT_RISE_M`]
+/// in most inner strips of a band ([`broad`]) is the same unseen front: a 36° ramp
+/// whose toe lies a few centimetres before a low camera's view ends, seen rising
+/// 4.4 cm in every inner strip of its track, was a go.
 /// A ramp rising out of view at a passable slope is not this: it stays go, measured.
 /// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
 /// out of view in them.
@@ -299,8 +306,10 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let wheelbase = f.cfg.rover.wheelbase_m as f32;
     let s = f.spec;
     let found = [Region::Left, Region::Belly, Region::Right].map(|region| {
-        let (mut strips, mut nearest) = (0usize, f32::INFINITY);
+        let (mut tall, mut short, mut nearest) = (0usize, 0usize, f32::INFINITY);
+        let (mut short_nearest, mut inner) = (f32::INFINITY, 0usize);
         for iy in inner_strips(f, region) {
+            inner += 1;
             let ground = |ix: usize| {
                 let c = s.cell(ix, iy);
                 let z = if region == Region::Belly {
@@ -338,7 +347,8 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 })
                 .map(|(c, _)| c);
             let top = cut.clone().map(|c| c.top).fold(f32::NEG_INFINITY, f32::max);
-            if top - foot.1 < STEEP_EXIT_RISE_M {
+            let rise = top - foot.1;
+            if rise < STEEP_EXIT_SHORT_RISE_M {
                 continue;
             }
             // A face across the strip within one cut cell (its points span the rise
@@ -355,16 +365,25 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .chain(climb)
                 .chain(cut.map(|c| (c.crest_xy[0], c.crest)));
             let steep = face || line_fit(points).is_some_and(|(p, _)| p.a as f32 >= tan_max);
-            if steep {
-                strips += 1;
+            if !steep {
+                continue;
+            }
+            short += 1;
+            short_nearest = short_nearest.min(foot.0);
+            if rise >= STEEP_EXIT_RISE_M {
+                tall += 1;
                 nearest = nearest.min(foot.0);
             }
+        }
+        if tall < 2 && broad(short, inner) {
+            nearest = short_nearest;
         }
         // Judged against the other tests' hazards only: a band beside this one
         // showing the same wall does not hide it.
         let judged =
             (verdict.hazards.iter()).any(|h| h.side == region.side() || h.distance_m <= nearest);
-        (region, strips >= 2 && !judged, nearest)
+        let steep = tall >= 2 || broad(short, inner);
+        (region, steep && !judged, nearest)
     });
     for (region, _, nearest) in found.into_iter().filter(|&(_, new, _)| new) {
         verdict.add_hazard(Hazard {
@@ -378,6 +397,17 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// Least rise from a climb's foot to the top of the cut cells the view ends in for
 /// [`steep_exit`], metres: more than rough ground's peak to peak (±2.5 cm).
 const STEEP_EXIT_RISE_M: f32 = 0.05;
+/// Least rise for a climb of [`steep_exit`] to count in a band's [`broad`] test,
+/// metres: beyond what depth noise (about 1 cm at 2 m) and a cell's partial view make
+/// of level ground.
+const STEEP_EXIT_SHORT_RISE_M: f32 = 0.03;
+
+/// Whether `steep` of a band's `inner` strips make most of it (two thirds, and at
+/// least three): a front across the band, not a bump of rough ground (10-20 cm long,
+/// two or three strips) for [`steep_exit`].
+fn broad(steep: usize, inner: usize) -> bool {
+    steep >= 3 && 3 * steep >= 2 * inner
+}
 
 /// How much of a track strip's nearest seen ground [`blind_rise`] fits its slope to,
 /// metres.
