@@ -1038,3 +1038,60 @@ fn a_steep_ramp_seen_rising_a_few_centimetres_before_the_view_ends_is_never_go()
     };
     assert_eq!(analyse(vec![low_step], &c).decision, Decision::Go);
 }
+
+#[test]
+fn a_step_the_view_ends_in_whose_face_noise_spreads_is_never_go() {
+    // `near_edge -- 300 7 far` #204: a Kinect v1 0.62 m high, pitched 38.6° and
+    // rolled −9.3°, whose image's top edge cuts the right track at 2.15-2.25 m, where
+    // a 12 cm step stands. With depth noise the face's points spread over the cut
+    // cells from the ground up (6-7 cm), so that neither band of a cell is a surface
+    // and the cells' means climb under 30°: go, workcase 5 (a low step).
+    let mut c = mounted([0.2389, -0.0772, 0.6231], [-9.281, 38.561, -2.059]);
+    c.camera.min_range_m = 0.443;
+    let step = Element::Step {
+        x_m: 2.2076,
+        height_m: 0.12,
+        extent: Extent::Right,
+    };
+    for v in [
+        analyse(vec![step.clone()], &c),
+        analyse_noisy(vec![step.clone()], &c, 7204),
+        analyse_noisy(vec![step.clone()], &c, 11),
+    ] {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Right),
+            "{:?}",
+            v.hazards
+        );
+    }
+    // On that rig, climbable ramps the view ends in, noisy rough ground, and a low
+    // step seen whole stay go.
+    for gradient in [15.0, 25.0] {
+        for extent in [Extent::Right, Extent::Full] {
+            let ramp = Element::ramp(2.1, 0.0, gradient, 0.0, extent);
+            for v in [
+                analyse(vec![ramp.clone()], &c),
+                analyse_noisy(vec![ramp.clone()], &c, 7204),
+            ] {
+                assert_eq!(v.decision, Decision::Go, "{ramp:?}: {:?}", v.hazards);
+            }
+        }
+    }
+    for seed in [4, 5, 6] {
+        let rough = Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m: 0.12,
+            seed,
+        };
+        let v = analyse_noisy(vec![rough], &c, seed);
+        assert_eq!(v.decision, Decision::Go, "rough {seed}: {:?}", v.hazards);
+    }
+    let low_step = Element::Step {
+        x_m: 1.6,
+        height_m: 0.07,
+        extent: Extent::Right,
+    };
+    let v = analyse_noisy(vec![low_step], &c, 7204);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+}

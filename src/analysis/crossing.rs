@@ -297,7 +297,11 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// three strips at a time. So a steep line over at least [`STEEP_EXIT_SHORT_RISE_M`]
 /// in most inner strips of a band ([`broad`]) is the same unseen front: a 36° ramp
 /// whose toe lies a few centimetres before a low camera's view ends, seen rising
-/// 4.4 cm in every inner strip of its track, was a go.
+/// 4.4 cm in every inner strip of its track, was a go. Likewise a cut cell whose
+/// points span [`STEEP_EXIT_RISE_M`] but whose two surfaces depth noise has merged
+/// (`crest` and `foot` both its mean, so the line through it climbs gently), unless
+/// its points hug one side of the cell (a face along the strip): a 12 cm step seen by
+/// a rolled Kinect v1 only where its image's top edge crosses it was a noisy go.
 /// A ramp rising out of view at a passable slope is not this: it stays go, measured.
 /// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
 /// out of view in them.
@@ -356,21 +360,32 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             // than beside it, unlike a ramp's side face along the strip), or the climb
             // and the cut cells' upper surface on one line steeper than the limit (a
             // face the cell boundary splits, a steep ramp).
+            let spans = |c: &Cell| c.top - c.low >= STEEP_EXIT_RISE_M;
             let face = cut.clone().any(|c| {
                 let (dx, dy) = (c.crest_xy[0] - c.foot_xy[0], c.crest_xy[1] - c.foot_xy[1]);
-                c.top - c.low >= STEEP_EXIT_RISE_M && dx > dy.abs()
+                spans(c) && dx > dy.abs()
+            });
+            // A face whose points depth noise spreads so that neither band of the
+            // cell is a surface (`crest` and `foot` both the mean) has no orientation
+            // of its own; its points not hugging one side of the cell, it is not
+            // along the strip. Counted only where most of the band shows a front.
+            let y_mid = s.y_centre(iy);
+            let spread = cut.clone().any(|c| {
+                spans(c)
+                    && c.crest_xy == c.foot_xy
+                    && (c.y - y_mid).abs() < FACE_OFF_VOXELS * s.voxel_m
             });
             let climb = before().take_while(|&(x, _)| x > foot.0);
             let points = std::iter::once(foot)
                 .chain(climb)
                 .chain(cut.map(|c| (c.crest_xy[0], c.crest)));
             let steep = face || line_fit(points).is_some_and(|(p, _)| p.a as f32 >= tan_max);
-            if !steep {
+            if !steep && !spread {
                 continue;
             }
             short += 1;
             short_nearest = short_nearest.min(foot.0);
-            if rise >= STEEP_EXIT_RISE_M {
+            if steep && rise >= STEEP_EXIT_RISE_M {
                 tall += 1;
                 nearest = nearest.min(foot.0);
             }
