@@ -119,11 +119,11 @@ impl Pipeline {
     }
 
     /// The ground cells the last frame was analysed on: the terrain memory's fused
-    /// cells when it is enabled, else the grid's.
+    /// cells when the frame was fused, else the grid's.
     pub fn analysed_cells(&self) -> &[crate::grid::Cell] {
         match &self.memory {
-            Some(m) => m.cells(),
-            None => self.grid.cells(),
+            Some(m) if self.verdict.memory.state == MemoryState::Fused => m.cells(),
+            _ => self.grid.cells(),
         }
     }
 
@@ -181,26 +181,31 @@ impl Pipeline {
                 v.memory = crate::verdict::MemoryUse::default();
                 (self.grid.cells(), None)
             }
-            Some(memory) => {
-                match motion {
-                    Ok(m) => memory.advance(&m),
-                    Err(_) => memory.clear(),
+            Some(memory) => match motion {
+                Ok(m) => {
+                    memory.advance(&m);
+                    let remembered =
+                        memory.fuse(self.grid.cells(), self.analyzer.expected(), self.grid.cut());
+                    v.memory = crate::verdict::MemoryUse {
+                        state: MemoryState::Fused,
+                        reason: None,
+                        remembered_cells: remembered,
+                        remembered_confidence: memory.mean_confidence(),
+                        remembered_hazards: 0,
+                    };
+                    (memory.cells(), Some(memory.confidence()))
                 }
-                let remembered =
-                    memory.fuse(self.grid.cells(), self.analyzer.expected(), self.grid.cut());
-                v.memory = crate::verdict::MemoryUse {
-                    state: if motion.is_ok() {
-                        MemoryState::Fused
-                    } else {
-                        MemoryState::SingleFrame
-                    },
-                    reason: motion.err().map(Untrusted::as_str),
-                    remembered_cells: remembered,
-                    remembered_confidence: memory.mean_confidence(),
-                    remembered_hazards: 0,
-                };
-                (memory.cells(), Some(memory.confidence()))
-            }
+                Err(why) => {
+                    // The frame alone; the map starts again from it.
+                    memory.restart(self.grid.cells(), self.grid.cut());
+                    v.memory = crate::verdict::MemoryUse {
+                        state: MemoryState::SingleFrame,
+                        reason: Some(why.as_str()),
+                        ..Default::default()
+                    };
+                    (self.grid.cells(), None)
+                }
+            },
         };
         v.timing_us.memory = t2.elapsed().as_secs_f32() * 1e6;
         self.analyzer.analyze(cells, remembered, self.grid.cut(), v);

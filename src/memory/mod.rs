@@ -509,19 +509,7 @@ impl TerrainMemory {
                     };
                     let cell = blend(&r.cell, w_old, &now, w_now);
                     let frames = if same { r.frames.saturating_add(1) } else { 1 };
-                    let cam = self.camera;
-                    let d = [now.x - cam[0], now.y - cam[1], now.z - cam[2]];
-                    let range_m = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                    *r = Remembered {
-                        cell,
-                        frames,
-                        // A cut cell's view is biased low: the next frame starts anew.
-                        weight: if partial { 0.0 } else { w_old + w_now },
-                        travel_m: 0.0,
-                        age_s: 0.0,
-                        range_m,
-                        copy: false,
-                    };
+                    *r = seen_now(cell, frames, w_old, &now, partial, self.camera);
                     self.fused[c] = cell;
                 } else {
                     self.fused[c] = now;
@@ -531,6 +519,30 @@ impl TerrainMemory {
         self.remembered = remembered;
         self.confidence_sum = confidence_sum;
         remembered
+    }
+
+    /// Start the map again from one frame (no trusted odometry: it can no longer be
+    /// placed): forget everything, then remember the frame's seen cells as seen once,
+    /// as [`clear`](Self::clear) and [`fuse`](Self::fuse) would, but without copying
+    /// the frame into the fused cells: the frame's analysis is its own
+    /// ([`Pipeline`](crate::Pipeline) hands it the grid's cells), and the next fuse
+    /// starts from this map. The confidences are 0 (nothing comes from memory).
+    pub fn restart(&mut self, frame: &[Cell], cut: &[bool]) {
+        self.clear();
+        self.confidence.fill(0.0);
+        self.remembered = 0;
+        self.confidence_sum = 0.0;
+        let s = self.spec;
+        for ix in 0..s.nx {
+            for iy in 0..s.ny {
+                let now = &frame[s.cell(ix, iy)];
+                if now.n >= self.min_points {
+                    let partial = cut.get(s.cell(ix, iy)) == Some(&true);
+                    let m = (ix + self.behind) * self.ny + iy + self.side;
+                    self.map[m] = seen_now(*now, 1, 0.0, now, partial, self.camera);
+                }
+            }
+        }
     }
 
     /// Per cell of the last fuse (analysis grid layout), the confidence of the
@@ -622,6 +634,31 @@ fn blend(old: &Cell, w_old: f32, now: &Cell, w_now: f32) -> Cell {
     }
 }
 
+/// A map cell as the frame sees it now: `cell` (the frame's view `now`, or its blend
+/// with the map's, `w_old` the map's part of the weight) seen `frames` frames in a
+/// row, from the camera at `camera` (rover frame, metres). A view the image's top edge
+/// cut (`partial`) is biased low: it carries no weight, and the next frame starts
+/// anew.
+fn seen_now(
+    cell: Cell,
+    frames: u16,
+    w_old: f32,
+    now: &Cell,
+    partial: bool,
+    camera: [f32; 3],
+) -> Remembered {
+    let d = [now.x - camera[0], now.y - camera[1], now.z - camera[2]];
+    Remembered {
+        cell,
+        frames,
+        weight: if partial { 0.0 } else { w_old + now.n as f32 },
+        travel_m: 0.0,
+        age_s: 0.0,
+        range_m: (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt(),
+        copy: false,
+    }
+}
+
 /// A remembered cell moved by `motion` (its points' centroids carried exactly) and
 /// aged by it.
 fn moved(r: &Remembered, motion: &Rigid, step: f32, dt: f32) -> Remembered {
@@ -671,6 +708,38 @@ mod tests {
             .map(|c| (c.x, c.y))
             .inspect(|&(x, y)| assert!(spec.cell_at(x, y).is_some()))
             .collect()
+    }
+
+    #[test]
+    fn a_restart_remembers_what_forgetting_and_fusing_the_frame_would() {
+        let (cfg, spec) = setup();
+        let blind = vec![false; spec.cell_count()];
+        // A map with history: a cell seen twice, moved, and a carried hazard.
+        let mut a = TerrainMemory::new(&cfg, spec);
+        let old = frame_with(&spec, 1.5, -0.4, 0.05);
+        a.fuse(&old, &blind, &[]);
+        a.fuse(&old, &blind, &[]);
+        a.advance(&Motion {
+            forward_m: 0.1,
+            dt_s: 0.1,
+            ..Motion::default()
+        });
+        let mut b = a.clone();
+        // The new frame: two cells, one the image's top edge cuts.
+        let mut now = frame_with(&spec, 1.012, 0.41, 0.15);
+        let far = frame_with(&spec, 2.6, 0.0, 0.3);
+        let (ix, iy) = spec.cell_at(2.6, 0.0).unwrap();
+        now[spec.cell(ix, iy)] = far[spec.cell(ix, iy)];
+        let mut cut = vec![false; spec.cell_count()];
+        cut[spec.cell(ix, iy)] = true;
+        a.clear();
+        a.fuse(&now, &blind, &cut);
+        b.restart(&now, &cut);
+        assert_eq!(a.map, b.map);
+        assert_eq!(a.hazards, b.hazards);
+        assert!(b.confidence().iter().all(|&k| k == 0.0));
+        assert_eq!((b.remembered(), b.mean_confidence()), (0, 0.0));
+        assert_eq!(b.map.iter().filter(|r| !r.is_empty()).count(), 2);
     }
 
     #[test]
