@@ -21,7 +21,7 @@
 
 use rand::{Rng, SeedableRng};
 use rover_terrain::sim::{self, families, Element, Extent, KinectNoise, Terrain};
-use rover_terrain::{Decision, Pipeline};
+use rover_terrain::{Config, Decision, Pipeline};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -34,7 +34,7 @@ fn main() {
     for i in 0..n {
         let config = families::Rig::random(&mut rng).config;
         let (near, end) = families::footprint(&config);
-        if passable {
+        let element = if passable {
             // Only rigs whose view ends inside the corridor: else the ramp would rise
             // out of the corridor, not out of the image.
             if end > config.analysis.corridor_length_m - 0.1 {
@@ -43,57 +43,14 @@ fn main() {
             let toe = rng.gen_range(end - 0.35..end - 0.02);
             let gradient = rng.gen_range(10.0..27.0);
             let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
-            let terrain = Terrain::new(vec![Element::ramp(toe, 0.0, gradient, 0.0, extent)]);
-            let frame = sim::render(&terrain, &config);
-            let mut pipeline = Pipeline::new(config.clone()).expect("a random rig is a valid rig");
-            for noisy in [false, true] {
-                let mut f = frame.clone();
-                if noisy {
-                    KinectNoise {
-                        seed: seed * 1000 + i as u64,
-                        ..Default::default()
-                    }
-                    .apply(&mut f, config.camera.hfov_deg);
-                }
-                let v = pipeline.process(&f).expect("frame fits");
-                total += 1;
-                if v.decision == Decision::Go {
-                    continue;
-                }
-                flagged += 1;
-                println!(
-                    "NOT GO #{i} noisy={noisy} end={end:.3} {:?} cam={}x{} hazards={:?}",
-                    terrain.elements, config.camera.width, config.camera.height, v.hazards
-                );
-            }
-            continue;
-        }
-        let x = if far {
-            rng.gen_range(near..near + 1.2)
+            Element::ramp(toe, 0.0, gradient, 0.0, extent)
         } else {
-            rng.gen_range((near - 0.35).max(0.3)..near + 0.12)
-        };
-        let r = config.rover.wheel_radius_m;
-        let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
-        let element = match i % 4 {
-            0 => Element::Step {
-                x_m: x,
-                height_m: rng.gen_range(r + 0.003..0.3),
-                extent,
-            },
-            1 => Element::Step {
-                x_m: x,
-                height_m: -rng.gen_range(r + 0.003..0.3),
-                extent,
-            },
-            2 => Element::ramp(x, 0.0, rng.gen_range(31.0..50.0), 0.0, extent),
-            _ => Element::Block {
-                x_m: x + 0.125,
-                y_m: rng.gen_range(-0.08..0.08),
-                length_m: 0.25,
-                width_m: 0.25,
-                height_m: rng.gen_range(config.rover.belly_clearance_m + 0.01..0.6),
-            },
+            let x = if far {
+                rng.gen_range(near..near + 1.2)
+            } else {
+                rng.gen_range((near - 0.35).max(0.3)..near + 0.12)
+            };
+            impassable(&mut rng, i, x, &config)
         };
         let terrain = Terrain::new(vec![element]);
         let frame = sim::render(&terrain, &config);
@@ -109,17 +66,20 @@ fn main() {
             }
             let v = pipeline.process(&f).expect("frame fits");
             total += 1;
-            if v.decision != Decision::Go {
+            // A go is wrong here, anything else on the passable control.
+            if (v.decision == Decision::Go) == passable {
                 continue;
             }
             flagged += 1;
             println!(
-                "GO #{i} noisy={noisy} near={near:.3} {:?} mount={:?} cam={}x{} feature={:?}",
+                "{} #{i} noisy={noisy} near={near:.3} end={end:.3} {:?} mount={:?} cam={}x{} feature={:?} hazards={:?}",
+                if passable { "NOT GO" } else { "GO" },
                 terrain.elements,
                 config.mount,
                 config.camera.width,
                 config.camera.height,
-                v.feature
+                v.feature,
+                v.hazards
             );
             if let Ok(dir) = std::env::var("DUMP") {
                 let dir = std::path::Path::new(&dir);
@@ -133,4 +93,32 @@ fn main() {
     }
     let counted = if passable { "not go" } else { "go" };
     println!("{total} frames, {flagged} {counted}");
+}
+
+/// The `i`-th impassable hazard at `x` metres on the rig `config`: a step up or down
+/// over the wheel radius, a ramp over the slope limit, a block over the belly
+/// clearance, in turn.
+fn impassable(rng: &mut impl Rng, i: usize, x: f64, config: &Config) -> Element {
+    let r = config.rover.wheel_radius_m;
+    let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
+    match i % 4 {
+        0 => Element::Step {
+            x_m: x,
+            height_m: rng.gen_range(r + 0.003..0.3),
+            extent,
+        },
+        1 => Element::Step {
+            x_m: x,
+            height_m: -rng.gen_range(r + 0.003..0.3),
+            extent,
+        },
+        2 => Element::ramp(x, 0.0, rng.gen_range(31.0..50.0), 0.0, extent),
+        _ => Element::Block {
+            x_m: x + 0.125,
+            y_m: rng.gen_range(-0.08..0.08),
+            length_m: 0.25,
+            width_m: 0.25,
+            height_m: rng.gen_range(config.rover.belly_clearance_m + 0.01..0.6),
+        },
+    }
 }
