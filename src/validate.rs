@@ -786,10 +786,13 @@ pub fn memory_drive_report(c: &DriveComparison, seed: u64) -> String {
             (false, true) =>
                 "The terrain memory's averaging lowers the noise of every cell's height, but not \
                  the toe's distance and gradient errors: those are already under a millimetre \
-                 and a few hundredths of a degree, and what is left is a bias, not a spread \
-                 (depth noise along the rays flattens a face slightly, the more the farther it \
-                 is seen, and the memory averages each cell's views from a little farther back). \
-                 Both stay far inside the noisy bars (3 cm, 1.5°).",
+                 and a few hundredths of a degree, and what is left is a bias, not a spread. \
+                 The cell the toe falls in holds the fold between ground and face, and the \
+                 memory blends views in which the fold lay at different places in it (the \
+                 largest fused errors are in the frames where the toe lies 3-4 cm into a \
+                 cell); and depth noise along the rays flattens a face slightly, the more the \
+                 farther it is seen, while the memory averages each cell's views from a little \
+                 farther back. Both stay far inside the noisy bars (3 cm, 1.5°).",
             (false, false) =>
                 "The terrain memory does not lower the errors here: a single frame's face fit \
                  already averages hundreds of cells, and both stay far inside the noisy bars \
