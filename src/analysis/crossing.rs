@@ -390,14 +390,15 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 nearest = nearest.min(foot.0);
             }
         }
-        if tall < 2 && broad(short, inner) {
-            nearest = short_nearest;
-        }
+        let (steep, nearest) = if tall >= 2 {
+            (true, nearest)
+        } else {
+            (broad(short, inner), short_nearest)
+        };
         // Judged against the other tests' hazards only: a band beside this one
         // showing the same wall does not hide it.
         let judged =
             (verdict.hazards.iter()).any(|h| h.side == region.side() || h.distance_m <= nearest);
-        let steep = tall >= 2 || broad(short, inner);
         (region, steep && !judged, nearest)
     });
     for (region, _, nearest) in found.into_iter().filter(|&(_, new, _)| new) {

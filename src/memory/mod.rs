@@ -264,6 +264,11 @@ impl TerrainMemory {
         self.view_start = start;
     }
 
+    /// The map cell under analysis grid cell (`ix`, `iy`).
+    fn map_index(&self, ix: usize, iy: usize) -> usize {
+        (ix + self.behind) * self.ny + iy + self.side
+    }
+
     /// The map cell (mx, my) containing the point (x, y), rover frame, metres.
     fn map_cell_at(&self, p: [f32; 2]) -> Option<usize> {
         let vs = self.spec.voxel_m;
@@ -474,7 +479,7 @@ impl TerrainMemory {
         for ix in 0..s.nx {
             for iy in 0..s.ny {
                 let c = s.cell(ix, iy);
-                let m = (ix + self.behind) * self.ny + iy + self.side;
+                let m = self.map_index(ix, iy);
                 let now = frame[c];
                 let seen = now.n >= self.min_points;
                 let r = &mut self.map[m];
@@ -535,10 +540,11 @@ impl TerrainMemory {
         let s = self.spec;
         for ix in 0..s.nx {
             for iy in 0..s.ny {
-                let now = &frame[s.cell(ix, iy)];
+                let c = s.cell(ix, iy);
+                let now = &frame[c];
                 if now.n >= self.min_points {
-                    let partial = cut.get(s.cell(ix, iy)) == Some(&true);
-                    let m = (ix + self.behind) * self.ny + iy + self.side;
+                    let partial = cut.get(c) == Some(&true);
+                    let m = self.map_index(ix, iy);
                     self.map[m] = seen_now(*now, 1, 0.0, now, partial, self.camera);
                 }
             }
@@ -573,9 +579,7 @@ impl TerrainMemory {
     /// How long ago and how far back each analysis-grid cell was last seen
     /// (`None`: nothing remembered there), for the pictures: (seconds, metres).
     pub fn age_at(&self, ix: usize, iy: usize) -> Option<(f32, f32)> {
-        let r = self
-            .map
-            .get((ix + self.behind) * self.ny + iy + self.side)?;
+        let r = self.map.get(self.map_index(ix, iy))?;
         (!r.is_empty()).then_some((r.age_s, r.travel_m))
     }
 }
