@@ -105,6 +105,8 @@ struct Remembered {
     /// A copy of a neighbour filling a hole the motion left: used this frame, never
     /// moved on (the original is, and copies again where a hole is left).
     copy: bool,
+    /// The ground bent within reach of the cell when last seen (see [`bent`]).
+    bent: bool,
 }
 
 impl Remembered {
@@ -116,6 +118,7 @@ impl Remembered {
         age_s: 0.0,
         range_m: 0.0,
         copy: false,
+        bent: false,
     };
 
     fn is_empty(&self) -> bool {
@@ -469,7 +472,8 @@ impl TerrainMemory {
     ///
     /// A cell the image's top edge cuts now (`cut`; empty: none) holds only the
     /// lower part of what stands there: it is the frame's alone, and it is not
-    /// averaged into the next frame's view of that cell either.
+    /// averaged into the next frame's view of that cell either. Nor is a cell over a
+    /// bend in the ground, now or when last seen ([`bent`]).
     ///
     /// Returns how many cells came from memory.
     pub fn fuse(&mut self, frame: &[Cell], expected: &[bool], cut: &[bool]) -> u32 {
@@ -500,13 +504,17 @@ impl TerrainMemory {
                 }
                 self.confidence[c] = 0.0;
                 if seen {
-                    // Frames that agree are averaged, weighted by their points (a
-                    // cell seen from near has more): noise falls as the rover drives
-                    // on. A cell that changed (a face appeared, a rock went) is the
-                    // frame's alone.
+                    // Frames that agree are averaged, weighted by the inverse
+                    // variance of their view ([`view_weight`]): noise falls as the
+                    // rover drives on. A cell that changed (a face appeared, a rock
+                    // went), or over a bend ([`bent`]), is the frame's alone.
                     let partial = cut.get(c) == Some(&true);
-                    let agree = same && (r.cell.top - now.top).abs() <= CONSISTENT_M;
-                    let w_now = now.n as f32;
+                    let bent_now = bent(frame, &s, ix, iy, self.min_points);
+                    let agree = same
+                        && (r.cell.top - now.top).abs() <= CONSISTENT_M
+                        && !bent_now
+                        && !r.bent;
+                    let w_now = view_weight(&now, self.camera);
                     let w_old = if agree && !partial {
                         r.weight.min(BLEND_FRAMES * w_now)
                     } else {
@@ -515,6 +523,7 @@ impl TerrainMemory {
                     let cell = blend(&r.cell, w_old, &now, w_now);
                     let frames = if same { r.frames.saturating_add(1) } else { 1 };
                     *r = seen_now(cell, frames, w_old, &now, partial, self.camera);
+                    r.bent = bent_now;
                     self.fused[c] = cell;
                 } else {
                     self.fused[c] = now;
@@ -611,6 +620,46 @@ fn redecide(v: &mut Verdict) {
     v.decision = decision;
 }
 
+/// How far a cell's mean height may lie off the line through its two neighbours'
+/// (along its strip or across it) for the ground under it to count as plane, metres.
+const BEND_M: f32 = 0.003;
+
+/// Whether the ground bends within reach of frame cell (`ix`, `iy`): its mean point
+/// lies more than [`BEND_M`] off the line through its seen neighbours' mean points,
+/// along the strip or across it. Over a bend (a ramp's toe, a crest) a cell's mean
+/// point depends on which part of the cell its points cover, and the views the memory
+/// re-bins cover different parts: averaging them mixes different chords. On a plane
+/// every part gives a point on it.
+fn bent(frame: &[Cell], s: &GridSpec, ix: usize, iy: usize, min_points: u32) -> bool {
+    let c = &frame[s.cell(ix, iy)];
+    let off = |a: &Cell, b: &Cell, along_x: bool| {
+        if a.n < min_points || b.n < min_points {
+            return 0.0;
+        }
+        let (pa, pb, pc) = if along_x {
+            (a.x, b.x, c.x)
+        } else {
+            (a.y, b.y, c.y)
+        };
+        let span = pb - pa;
+        if span.abs() < 1e-4 {
+            return 0.0;
+        }
+        (c.z - (a.z + (b.z - a.z) * (pc - pa) / span)).abs()
+    };
+    let along = ix > 0 && ix + 1 < s.nx && {
+        off(&frame[s.cell(ix - 1, iy)], &frame[s.cell(ix + 1, iy)], true) > BEND_M
+    };
+    let across = iy > 0 && iy + 1 < s.ny && {
+        off(
+            &frame[s.cell(ix, iy - 1)],
+            &frame[s.cell(ix, iy + 1)],
+            false,
+        ) > BEND_M
+    };
+    along || across
+}
+
 /// How many of the current frame's weight the remembered statistics of a cell may
 /// carry when a frame agrees with them: about the last five frames count.
 const BLEND_FRAMES: f32 = 4.0;
@@ -638,6 +687,16 @@ fn blend(old: &Cell, w_old: f32, now: &Cell, w_now: f32) -> Cell {
     }
 }
 
+/// How much a frame's view of a cell weighs in the blend: the inverse variance of its
+/// mean height, relative: its points over the fourth power of its range (a depth
+/// camera's noise σ grows with the square of the range), ranges under
+/// [`CLEAR_RANGE_M`] counting as that.
+fn view_weight(now: &Cell, camera: [f32; 3]) -> f32 {
+    let d = [now.x - camera[0], now.y - camera[1], now.z - camera[2]];
+    let range = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    now.n as f32 * (CLEAR_RANGE_M / range.max(CLEAR_RANGE_M)).powi(4)
+}
+
 /// A map cell as the frame sees it now: `cell` (the frame's view `now`, or its blend
 /// with the map's, `w_old` the map's part of the weight) seen `frames` frames in a
 /// row, from the camera at `camera` (rover frame, metres). A view the image's top edge
@@ -655,11 +714,16 @@ fn seen_now(
     Remembered {
         cell,
         frames,
-        weight: if partial { 0.0 } else { w_old + now.n as f32 },
+        weight: if partial {
+            0.0
+        } else {
+            w_old + view_weight(now, camera)
+        },
         travel_m: 0.0,
         age_s: 0.0,
         range_m: (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt(),
         copy: false,
+        bent: false,
     }
 }
 
@@ -688,20 +752,27 @@ mod tests {
 
     /// A frame with one cell seen at (x, y) and height z.
     fn frame_with(spec: &GridSpec, x: f32, y: f32, z: f32) -> Vec<Cell> {
+        frame_of(spec, &[(x, y, z)])
+    }
+
+    /// A frame with a cell seen at each (x, y) and height z.
+    fn frame_of(spec: &GridSpec, seen: &[(f32, f32, f32)]) -> Vec<Cell> {
         let mut cells = vec![Cell::EMPTY; spec.cell_count()];
-        let (ix, iy) = spec.cell_at(x, y).unwrap();
-        cells[spec.cell(ix, iy)] = Cell {
-            n: 20,
-            x,
-            y,
-            z,
-            top: z,
-            low: z,
-            crest: z,
-            foot: z,
-            crest_xy: [x, y],
-            foot_xy: [x, y],
-        };
+        for &(x, y, z) in seen {
+            let (ix, iy) = spec.cell_at(x, y).unwrap();
+            cells[spec.cell(ix, iy)] = Cell {
+                n: 20,
+                x,
+                y,
+                z,
+                top: z,
+                low: z,
+                crest: z,
+                foot: z,
+                crest_xy: [x, y],
+                foot_xy: [x, y],
+            };
+        }
         cells
     }
 
@@ -942,6 +1013,40 @@ mod tests {
         // ...and the next whole view is not averaged with it.
         m.fuse(&frame_with(&spec, x, y, 0.32), &view, &[]);
         assert_eq!(z_of(&m), 0.32);
+    }
+
+    #[test]
+    fn views_over_a_bend_are_not_averaged() {
+        let (cfg, spec) = setup();
+        let view = vec![true; spec.cell_count()];
+        let (x, y) = (2.525, 0.425);
+        let vs = spec.voxel_m;
+        // Three cells along a strip: the middle one's height `mid`, its neighbours on
+        // a 20 % slope (a ramp's face) or, with `bend`, the nearer one flat (its toe).
+        let strip = |mid: f32, bend: bool| {
+            let near = if bend { mid } else { mid - 0.2 * vs };
+            frame_of(
+                &spec,
+                &[(x - vs, y, near), (x, y, mid), (x + vs, y, mid + 0.2 * vs)],
+            )
+        };
+        let mid_of = |m: &TerrainMemory| {
+            let (ix, iy) = spec.cell_at(x, y).unwrap();
+            m.cells()[spec.cell(ix, iy)].z
+        };
+        // On a plane, agreeing views are averaged...
+        let mut m = TerrainMemory::new(&cfg, spec);
+        m.fuse(&strip(0.300, false), &view, &[]);
+        m.fuse(&strip(0.302, false), &view, &[]);
+        let z = mid_of(&m);
+        assert!(z > 0.300 && z < 0.302, "{z}");
+        // ...over a bend seen now, or seen before, the frame's view stands alone.
+        for bends in [[false, true], [true, false]] {
+            let mut m = TerrainMemory::new(&cfg, spec);
+            m.fuse(&strip(0.300, bends[0]), &view, &[]);
+            m.fuse(&strip(0.302, bends[1]), &view, &[]);
+            assert_eq!(mid_of(&m), 0.302, "{bends:?}");
+        }
     }
 
     #[test]
