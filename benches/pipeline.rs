@@ -1,7 +1,9 @@
-//! Criterion benchmarks of the whole pipeline and its binning pass on a 640×480
-//! frame (the bar's camera). Run: `cargo bench --bench pipeline`.
+//! Criterion benchmarks of the whole pipeline on a 640×480 frame (the bar's camera),
+//! and of the terrain memory's per-frame work (moving the map by the odometry and
+//! fusing a frame in) on its own. Run: `cargo bench --bench pipeline`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use rover_terrain::memory::{Motion, TerrainMemory};
 use rover_terrain::sim::{self, Element, Extent, KinectNoise, Terrain};
 use rover_terrain::{Config, Pipeline};
 
@@ -45,5 +47,36 @@ fn pipeline(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, pipeline);
+/// The memory stage on each frame's cells: the map moved by 3 cm and 0.5° (as `bench`
+/// drives it), then the frame fused in, after the map has filled.
+fn memory(c: &mut Criterion) {
+    let mut group = c.benchmark_group("memory_640x480");
+    let config = Config::default();
+    let mut p = Pipeline::new(config.clone()).expect("default config works");
+    let motion = Motion {
+        forward_m: 0.03,
+        lateral_m: 0.0,
+        dheading_rad: 0.5f32.to_radians(),
+        dt_s: 1.0 / 30.0,
+    };
+    for (name, frame) in frames() {
+        p.process(&frame).expect("frame fits");
+        let (cells, cut) = (p.grid().cells(), p.grid().cut());
+        let expected = p.analyzer().expected();
+        let mut m = TerrainMemory::new(&config, *p.grid().spec());
+        for _ in 0..20 {
+            m.advance(&motion);
+            m.fuse(cells, expected, cut);
+        }
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                m.advance(&motion);
+                m.fuse(cells, expected, cut)
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, pipeline, memory);
 criterion_main!(benches);

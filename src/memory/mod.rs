@@ -163,8 +163,11 @@ pub struct TerrainMemory {
     ny: usize,
     map: Vec<Remembered>,
     next: Vec<Remembered>,
-    /// Which map cell each cell of `next` came from (`usize::MAX`: none).
-    source: Vec<usize>,
+    /// Which map cell each cell of `next` came from ([`NONE`]: none yet).
+    source: Vec<u32>,
+    /// The map cells that landed in no cell of `next` in the first pass (outside the
+    /// map, or lost a collision), capacity one per map cell.
+    unplaced: Vec<u32>,
     /// Whether each map cell's content landed in `next`.
     placed: Vec<bool>,
     fused: Vec<Cell>,
@@ -183,6 +186,8 @@ pub struct TerrainMemory {
     min_frames: u16,
     max_travel_m: f32,
     max_age_s: f32,
+    /// Map cells per metre (the voxel size's inverse, worked out once).
+    per_voxel: f32,
     remembered: u32,
     /// The sum of the remembered cells' confidence in the last fuse.
     confidence_sum: f32,
@@ -192,6 +197,9 @@ pub struct TerrainMemory {
 /// depth camera's noise grows with the square of the range (σ = 1.425e-3 m⁻¹ · Z² for
 /// a Kinect v1: 3 mm here), so a cell last seen from twice as far counts a quarter.
 pub const CLEAR_RANGE_M: f32 = 1.5;
+
+/// No map cell (in [`TerrainMemory`]'s `source`).
+const NONE: u32 = u32::MAX;
 
 /// Width of the map beyond the corridor on each side, metres.
 const SIDE_MARGIN_M: f64 = 0.2;
@@ -212,7 +220,8 @@ impl TerrainMemory {
             ny,
             map: vec![Remembered::EMPTY; nx * ny],
             next: vec![Remembered::EMPTY; nx * ny],
-            source: vec![usize::MAX; nx * ny],
+            source: vec![NONE; nx * ny],
+            unplaced: Vec::with_capacity(nx * ny),
             placed: vec![false; nx * ny],
             fused: vec![Cell::EMPTY; spec.cell_count()],
             confidence: vec![0.0; spec.cell_count()],
@@ -232,6 +241,7 @@ impl TerrainMemory {
             min_frames: m.min_frames.min(u32::from(u16::MAX)) as u16,
             max_travel_m: m.max_travel_m as f32,
             max_age_s: m.max_age_s as f32,
+            per_voxel: 1.0 / spec.voxel_m,
             remembered: 0,
             confidence_sum: 0.0,
         }
@@ -273,18 +283,21 @@ impl TerrainMemory {
     }
 
     /// The map cell (mx, my) containing the point (x, y), rover frame, metres.
-    fn map_cell_at(&self, p: [f32; 2]) -> Option<usize> {
-        let vs = self.spec.voxel_m;
-        let fx = (p[0] - self.spec.origin[0]) / vs + self.behind as f32;
-        let fy = (p[1] - self.spec.origin[1]) / vs + self.side as f32;
+    fn map_xy(&self, p: [f32; 2]) -> Option<(usize, usize)> {
+        let fx = (p[0] - self.spec.origin[0]) * self.per_voxel + self.behind as f32;
+        let fy = (p[1] - self.spec.origin[1]) * self.per_voxel + self.side as f32;
         (fx >= 0.0 && fy >= 0.0 && fx < self.nx as f32 && fy < self.ny as f32)
-            .then(|| fx as usize * self.ny + fy as usize)
+            .then_some((fx as usize, fy as usize))
     }
 
-    /// The centre of map cell `i`, rover frame, metres.
-    fn map_centre(&self, i: usize) -> [f32; 2] {
+    /// The index of the map cell containing the point (x, y), rover frame, metres.
+    fn map_cell_at(&self, p: [f32; 2]) -> Option<usize> {
+        self.map_xy(p).map(|(mx, my)| mx * self.ny + my)
+    }
+
+    /// The centre of map cell (`mx`, `my`), rover frame, metres.
+    fn map_centre(&self, mx: usize, my: usize) -> [f32; 2] {
         let vs = self.spec.voxel_m;
-        let (mx, my) = (i / self.ny, i % self.ny);
         [
             self.spec.origin[0] + (mx as f32 - self.behind as f32 + 0.5) * vs,
             self.spec.origin[1] + (my as f32 - self.side as f32 + 0.5) * vs,
@@ -296,59 +309,62 @@ impl TerrainMemory {
         let step = motion.forward_m.hypot(motion.lateral_m);
         let dt = motion.dt_s;
         let motion = &Rigid::of(motion);
-        self.next.fill(Remembered::EMPTY);
-        self.source.fill(usize::MAX);
+        self.source.fill(NONE);
         self.placed.fill(false);
+        self.unplaced.clear();
         // Every remembered cell to where its centroid is now; when two land in one
         // cell, the one seen more recently stays.
+        let (max_travel, max_age) = (self.max_travel_m, self.max_age_s);
+        let carried = |r: &Remembered| {
+            !r.is_empty() && !r.copy && r.travel_m + step <= max_travel && r.age_s + dt <= max_age
+        };
         for i in 0..self.map.len() {
-            let r = self.map[i];
-            if r.is_empty() || r.copy {
+            let r = &self.map[i];
+            if !carried(r) {
                 continue;
             }
-            let moved = moved(&r, motion, step, dt);
-            if moved.travel_m > self.max_travel_m || moved.age_s > self.max_age_s {
+            let moved = moved(r, motion, step, dt);
+            let Some(j) = self.map_cell_at([moved.cell.x, moved.cell.y]) else {
+                self.unplaced.push(i as u32);
                 continue;
-            }
-            if let Some(j) = self.map_cell_at([moved.cell.x, moved.cell.y]) {
-                let there = &mut self.next[j];
-                if there.is_empty() || moved.travel_m < there.travel_m {
-                    *there = moved;
-                    if let Some(lost) = self.placed.get_mut(self.source[j]) {
-                        *lost = false;
-                    }
-                    self.source[j] = i;
-                    self.placed[i] = true;
+            };
+            let was = self.source[j];
+            if was == NONE || moved.travel_m < self.next[j].travel_m {
+                self.next[j] = moved;
+                if was != NONE {
+                    self.placed[was as usize] = false;
+                    self.unplaced.push(was);
                 }
+                self.source[j] = i as u32;
+                self.placed[i] = true;
+            } else {
+                self.unplaced.push(i as u32);
             }
         }
         // Two centroids in one cell leave a cell that none lands in (a turn does this
         // often, small steps now and then). The one that lost goes to the empty cell
-        // beside where it landed nearest its centroid...
+        // beside where it landed nearest its centroid, in map order...
+        self.unplaced.sort_unstable();
         let vs = self.spec.voxel_m;
-        for i in 0..self.map.len() {
-            let r = self.map[i];
-            if r.is_empty() || r.copy || self.placed[i] {
-                continue;
-            }
-            let moved = moved(&r, motion, step, dt);
-            if moved.travel_m > self.max_travel_m || moved.age_s > self.max_age_s {
-                continue;
-            }
+        for k in 0..self.unplaced.len() {
+            let i = self.unplaced[k] as usize;
+            let moved = moved(&self.map[i], motion, step, dt);
             let p = [moved.cell.x, moved.cell.y];
             let free = [[-vs, 0.0], [vs, 0.0], [0.0, -vs], [0.0, vs]]
                 .into_iter()
-                .filter_map(|[dx, dy]| self.map_cell_at([p[0] + dx, p[1] + dy]))
-                .filter(|&j| self.next[j].is_empty())
-                .min_by(|&a, &b| {
-                    let d = |j: usize| {
-                        let c = self.map_centre(j);
-                        (c[0] - p[0]).hypot(c[1] - p[1])
-                    };
-                    d(a).total_cmp(&d(b))
-                });
-            if let Some(j) = free {
+                .filter_map(|[dx, dy]| self.map_xy([p[0] + dx, p[1] + dy]))
+                .filter(|&(mx, my)| self.source[mx * self.ny + my] == NONE)
+                .map(|(mx, my)| {
+                    let c = self.map_centre(mx, my);
+                    (
+                        mx * self.ny + my,
+                        (c[0] - p[0]).powi(2) + (c[1] - p[1]).powi(2),
+                    )
+                })
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some((j, _)) = free {
                 self.next[j] = moved;
+                self.source[j] = i as u32;
                 self.placed[i] = true;
             }
         }
@@ -356,30 +372,25 @@ impl TerrainMemory {
         // when that one's centroid now lies within a cell of it: a remembered surface
         // has no holes that the motion made.
         for j in 0..self.next.len() {
-            if !self.next[j].is_empty() {
+            if self.source[j] != NONE {
                 continue;
             }
-            let centre = self.map_centre(j);
-            let Some(i) = self.map_cell_at(motion.unapply(centre)) else {
-                continue;
+            let centre = self.map_centre(j / self.ny, j % self.ny);
+            let copy = self
+                .map_cell_at(motion.unapply(centre))
+                .map(|i| &self.map[i])
+                .filter(|r| carried(r))
+                .map(|r| moved(r, motion, step, dt))
+                .filter(|m| {
+                    (m.cell.x - centre[0]).abs() <= vs && (m.cell.y - centre[1]).abs() <= vs
+                });
+            self.next[j] = match copy {
+                Some(m) => Remembered { copy: true, ..m },
+                None => Remembered::EMPTY,
             };
-            let r = self.map[i];
-            if r.is_empty() || r.copy {
-                continue;
-            }
-            let moved = moved(&r, motion, step, dt);
-            let near =
-                (moved.cell.x - centre[0]).abs() <= vs && (moved.cell.y - centre[1]).abs() <= vs;
-            if near && moved.travel_m <= self.max_travel_m && moved.age_s <= self.max_age_s {
-                self.next[j] = Remembered {
-                    copy: true,
-                    ..moved
-                };
-            }
         }
         std::mem::swap(&mut self.map, &mut self.next);
         // Carried hazards move too; one under or behind the front axle is passed.
-        let (max_travel, max_age) = (self.max_travel_m, self.max_age_s);
         for h in self.hazards.iter_mut() {
             h.at = motion.apply(h.at);
             h.travel_m += step;
