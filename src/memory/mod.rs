@@ -168,8 +168,6 @@ pub struct TerrainMemory {
     /// The map cells that landed in no cell of `next` in the first pass (outside the
     /// map, or lost a collision), capacity one per map cell.
     unplaced: Vec<u32>,
-    /// Whether each map cell's content landed in `next`.
-    placed: Vec<bool>,
     fused: Vec<Cell>,
     /// Per fused cell, the confidence of the remembered cell it came from (0: the
     /// frame's own).
@@ -222,7 +220,6 @@ impl TerrainMemory {
             next: vec![Remembered::EMPTY; nx * ny],
             source: vec![NONE; nx * ny],
             unplaced: Vec::with_capacity(nx * ny),
-            placed: vec![false; nx * ny],
             fused: vec![Cell::EMPTY; spec.cell_count()],
             confidence: vec![0.0; spec.cell_count()],
             camera: [
@@ -310,7 +307,6 @@ impl TerrainMemory {
         let dt = motion.dt_s;
         let motion = &Rigid::of(motion);
         self.source.fill(NONE);
-        self.placed.fill(false);
         self.unplaced.clear();
         // Every remembered cell to where its centroid is now; when two land in one
         // cell, the one seen more recently stays.
@@ -332,11 +328,9 @@ impl TerrainMemory {
             if was == NONE || moved.travel_m < self.next[j].travel_m {
                 self.next[j] = moved;
                 if was != NONE {
-                    self.placed[was as usize] = false;
                     self.unplaced.push(was);
                 }
                 self.source[j] = i as u32;
-                self.placed[i] = true;
             } else {
                 self.unplaced.push(i as u32);
             }
@@ -365,7 +359,6 @@ impl TerrainMemory {
             if let Some((j, _)) = free {
                 self.next[j] = moved;
                 self.source[j] = i as u32;
-                self.placed[i] = true;
             }
         }
         // ...and a cell still empty takes a copy of the cell that was under its centre
@@ -525,7 +518,8 @@ impl TerrainMemory {
                         && (r.cell.top - now.top).abs() <= CONSISTENT_M
                         && !bent_now
                         && !r.bent;
-                    let w_now = view_weight(&now, self.camera);
+                    let range = range_from(self.camera, &now);
+                    let w_now = view_weight(now.n, range);
                     let w_old = if agree && !partial {
                         r.weight.min(BLEND_FRAMES * w_now)
                     } else {
@@ -533,7 +527,7 @@ impl TerrainMemory {
                     };
                     let cell = blend(&r.cell, w_old, &now, w_now);
                     let frames = if same { r.frames.saturating_add(1) } else { 1 };
-                    *r = seen_now(cell, frames, w_old, &now, partial, self.camera);
+                    *r = seen_now(cell, frames, w_old + w_now, range, partial);
                     r.bent = bent_now;
                     self.fused[c] = cell;
                 } else {
@@ -565,7 +559,8 @@ impl TerrainMemory {
                 if now.n >= self.min_points {
                     let partial = cut.get(c) == Some(&true);
                     let m = self.map_index(ix, iy);
-                    self.map[m] = seen_now(*now, 1, 0.0, now, partial, self.camera);
+                    let range = range_from(self.camera, now);
+                    self.map[m] = seen_now(*now, 1, view_weight(now.n, range), range, partial);
                 }
             }
         }
@@ -698,41 +693,33 @@ fn blend(old: &Cell, w_old: f32, now: &Cell, w_now: f32) -> Cell {
     }
 }
 
-/// How much a frame's view of a cell weighs in the blend: the inverse variance of its
-/// mean height, relative: its points over the fourth power of its range (a depth
-/// camera's noise σ grows with the square of the range), ranges under
-/// [`CLEAR_RANGE_M`] counting as that.
-fn view_weight(now: &Cell, camera: [f32; 3]) -> f32 {
-    let d = [now.x - camera[0], now.y - camera[1], now.z - camera[2]];
-    let range = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    now.n as f32 * (CLEAR_RANGE_M / range.max(CLEAR_RANGE_M)).powi(4)
+/// The camera's distance (at `camera`, rover frame) from a cell's mean point, metres.
+fn range_from(camera: [f32; 3], cell: &Cell) -> f32 {
+    let d = [cell.x - camera[0], cell.y - camera[1], cell.z - camera[2]];
+    (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
 }
 
-/// A map cell as the frame sees it now: `cell` (the frame's view `now`, or its blend
-/// with the map's, `w_old` the map's part of the weight) seen `frames` frames in a
-/// row, from the camera at `camera` (rover frame, metres). A view the image's top edge
-/// cut (`partial`) is biased low: it carries no weight, and the next frame starts
-/// anew.
-fn seen_now(
-    cell: Cell,
-    frames: u16,
-    w_old: f32,
-    now: &Cell,
-    partial: bool,
-    camera: [f32; 3],
-) -> Remembered {
-    let d = [now.x - camera[0], now.y - camera[1], now.z - camera[2]];
+/// How much a view of a cell (`n` points, seen from `range_m` metres) weighs in the
+/// blend: the inverse variance of its mean height, relative: its points over the
+/// fourth power of its range (a depth camera's noise σ grows with the square of the
+/// range), ranges under [`CLEAR_RANGE_M`] counting as that.
+fn view_weight(n: u32, range_m: f32) -> f32 {
+    n as f32 * (CLEAR_RANGE_M / range_m.max(CLEAR_RANGE_M)).powi(4)
+}
+
+/// A map cell as the frame sees it now: `cell` (the frame's view, or its blend with
+/// the map's) seen `frames` frames in a row, carrying `weight` (the blend's, see
+/// [`view_weight`]), its points seen from `range_m` metres. A view the image's top
+/// edge cut (`partial`) is biased low: it carries no weight, and the next frame
+/// starts anew.
+fn seen_now(cell: Cell, frames: u16, weight: f32, range_m: f32, partial: bool) -> Remembered {
     Remembered {
         cell,
         frames,
-        weight: if partial {
-            0.0
-        } else {
-            w_old + view_weight(now, camera)
-        },
+        weight: if partial { 0.0 } else { weight },
         travel_m: 0.0,
         age_s: 0.0,
-        range_m: (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt(),
+        range_m,
         copy: false,
         bent: false,
     }
