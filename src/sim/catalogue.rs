@@ -104,12 +104,26 @@ fn halt(verdict: Decision, hazard: HazardKind) -> Expectation {
 }
 
 /// The fixture suite: the ten workcases (the paper's four Table 2 cases among them),
-/// the impassable cases, passable edge cases, a drop-off, and frames with no data.
+/// the impassable cases, passable edge cases, a drop-off, and frames with no data,
+/// sorted by name.
 pub fn catalogue() -> Vec<Scene> {
-    use Extent::{Full, Left, Right};
-    let ramp = Element::ramp;
-    let tc = 0.45; // centre of a wheel track, metres
-    let scene = |name, description, terrain: Vec<Element>, expect, noisy_seed| Scene {
+    let mut v = [workcases(), passable_edges(), impassable(), no_data()].concat();
+    v.sort_by_key(|s| s.name);
+    v
+}
+
+/// Centre of a wheel track, metres.
+const TRACK_CENTRE_M: f64 = 0.45;
+
+/// A scene with the default rig, drawn without fill.
+fn scene(
+    name: &'static str,
+    description: &'static str,
+    terrain: Vec<Element>,
+    expect: Expectation,
+    noisy_seed: Option<u64>,
+) -> Scene {
+    Scene {
         name,
         description,
         config: SceneConfig::Default,
@@ -118,8 +132,14 @@ pub fn catalogue() -> Vec<Scene> {
         expect,
         paper_case: None,
         noisy_seed,
-    };
-    let mut v = vec![
+    }
+}
+
+/// The ten workcases, the paper's Table 2 cases 2, 3, 4 and 8 among them.
+fn workcases() -> Vec<Scene> {
+    use Extent::{Full, Left, Right};
+    let (ramp, tc) = (Element::ramp, TRACK_CENTRE_M);
+    vec![
         scene("flat", "flat ground", vec![], go(1, None, None, None), Some(11)),
         Scene {
             paper_case: Some(2),
@@ -197,6 +217,14 @@ pub fn catalogue() -> Vec<Scene> {
             go(10, Some(1.1), Some(-14.0), None),
             Some(20),
         ),
+    ]
+}
+
+/// Passable edge cases: the steepest ramp, highest step and belly rock still go.
+fn passable_edges() -> Vec<Scene> {
+    use Extent::Full;
+    let ramp = Element::ramp;
+    vec![
         scene(
             "ramp_25deg",
             "passable edge: a 25° ramp across the full width, toe 1.0 m",
@@ -207,17 +235,34 @@ pub fn catalogue() -> Vec<Scene> {
         scene(
             "step_8cm",
             "passable edge: a 0.08 m step across the full width at 1.3 m",
-            vec![Element::Step { x_m: 1.3, height_m: 0.08, extent: Full }],
+            vec![Element::Step {
+                x_m: 1.3,
+                height_m: 0.08,
+                extent: Full,
+            }],
             go(2, Some(1.3), None, None),
             Some(22),
         ),
         scene(
             "belly_rock_20cm",
             "passable edge: a 0.20 m rock under the belly at 1.4 m",
-            vec![Element::Rock { x_m: 1.4, y_m: 0.0, radius_m: 0.17, height_m: 0.20 }],
+            vec![Element::Rock {
+                x_m: 1.4,
+                y_m: 0.0,
+                radius_m: 0.17,
+                height_m: 0.20,
+            }],
             go(1, None, None, None),
             Some(23),
         ),
+    ]
+}
+
+/// Impassable cases: each stops with its hazard.
+fn impassable() -> Vec<Scene> {
+    use Extent::{Full, Left};
+    let (ramp, tc) = (Element::ramp, TRACK_CENTRE_M);
+    vec![
         scene(
             "slope_35deg",
             "impassable: a 35° ramp across the full width, toe 1.2 m",
@@ -235,35 +280,66 @@ pub fn catalogue() -> Vec<Scene> {
         scene(
             "step_15cm",
             "impassable: a 0.15 m step across the full width at 1.3 m",
-            vec![Element::Step { x_m: 1.3, height_m: 0.15, extent: Full }],
+            vec![Element::Step {
+                x_m: 1.3,
+                height_m: 0.15,
+                extent: Full,
+            }],
             halt(Decision::Stop, HazardKind::Step),
             Some(25),
         ),
         scene(
             "track_block",
             "impassable: a 0.2 m block in the right track at 1.6 m",
-            vec![Element::Block { x_m: 1.6, y_m: -0.45, length_m: 0.3, width_m: 0.3, height_m: 0.2 }],
+            vec![Element::Block {
+                x_m: 1.6,
+                y_m: -0.45,
+                length_m: 0.3,
+                width_m: 0.3,
+                height_m: 0.2,
+            }],
             halt(Decision::Stop, HazardKind::Step),
             None,
         ),
         scene(
             "belly_block_40cm",
             "impassable: a 0.40 m block under the belly at 1.5 m",
-            vec![Element::Block { x_m: 1.5, y_m: 0.0, length_m: 0.3, width_m: 0.3, height_m: 0.40 }],
+            vec![Element::Block {
+                x_m: 1.5,
+                y_m: 0.0,
+                length_m: 0.3,
+                width_m: 0.3,
+                height_m: 0.40,
+            }],
             halt(Decision::Stop, HazardKind::Belly),
             Some(26),
         ),
         scene(
             "drop_off",
             "impassable: the ground ends at 1.6 m and falls 1 m",
-            vec![Element::DropOff { x_m: 1.6, depth_m: 1.0 }],
+            vec![Element::DropOff {
+                x_m: 1.6,
+                depth_m: 1.0,
+            }],
             halt(Decision::Stop, HazardKind::DropOff),
             Some(27),
         ),
+    ]
+}
+
+/// Frames with no usable data: unknown.
+fn no_data() -> Vec<Scene> {
+    vec![
         Scene {
             terrain: None,
             fill_mm: 0,
-            ..scene("all_zero", "no data: every pixel 0", vec![], halt(Decision::Unknown, HazardKind::Unknown), None)
+            ..scene(
+                "all_zero",
+                "no data: every pixel 0",
+                vec![],
+                halt(Decision::Unknown, HazardKind::Unknown),
+                None,
+            )
         },
         Scene {
             terrain: None,
@@ -276,7 +352,5 @@ pub fn catalogue() -> Vec<Scene> {
                 None,
             )
         },
-    ];
-    v.sort_by_key(|s| s.name);
-    v
+    ]
 }
