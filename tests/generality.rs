@@ -1095,3 +1095,113 @@ fn a_step_the_view_ends_in_whose_face_noise_spreads_is_never_go() {
     let v = analyse_noisy(vec![low_step], &c, 7204);
     assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
 }
+
+#[test]
+fn a_tall_step_seen_rising_a_few_centimetres_where_a_rolled_view_ends_is_never_go() {
+    // `near_edge -- 300 14 far` #24: a Kinect v1 0.59 m high, pitched 36.8° and rolled
+    // 7.9°, whose image's top edge crosses the right track at 2.03-2.10 m, where a
+    // 21 cm step stands. With depth noise the face's points spread over the cut cells
+    // (neither band of a cell a surface), and the roll tilting the view's end across
+    // the track, they rise 5-6 cm in three of its eight inner strips and less in the
+    // rest: go, workcase 1.
+    let mut c = mounted([0.2864, 0.0505, 0.5853], [7.907, 36.805, 1.276]);
+    c.camera.min_range_m = 0.3027;
+    let step = Element::Step {
+        x_m: 2.055,
+        height_m: 0.212,
+        extent: Extent::Right,
+    };
+    for v in [
+        analyse(vec![step.clone()], &c),
+        analyse_noisy(vec![step.clone()], &c, 14024),
+        analyse_noisy(vec![step.clone()], &c, 5),
+    ] {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Right),
+            "{:?}",
+            v.hazards
+        );
+    }
+    // On that rig, climbable ramps the view ends in, noisy rough ground, and a low
+    // step seen whole stay go.
+    for gradient in [15.0, 22.0] {
+        for extent in [Extent::Right, Extent::Full] {
+            let ramp = Element::ramp(1.95, 0.0, gradient, 0.0, extent);
+            for v in [
+                analyse(vec![ramp.clone()], &c),
+                analyse_noisy(vec![ramp.clone()], &c, 14024),
+            ] {
+                assert_eq!(v.decision, Decision::Go, "{ramp:?}: {:?}", v.hazards);
+            }
+        }
+    }
+    for seed in [7, 8, 9] {
+        let rough = Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m: 0.15,
+            seed,
+        };
+        let v = analyse_noisy(vec![rough], &c, seed);
+        assert_eq!(v.decision, Decision::Go, "rough {seed}: {:?}", v.hazards);
+    }
+    let low_step = Element::Step {
+        x_m: 1.5,
+        height_m: 0.07,
+        extent: Extent::Right,
+    };
+    let v = analyse_noisy(vec![low_step], &c, 14024);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+}
+
+#[test]
+fn a_one_track_ramps_side_face_split_between_belly_and_track_cells_is_not_under_the_belly() {
+    // `sweep -- families 88 114 random` #22: a 320×240 camera 0.82 m high pitched 28°
+    // over a 22° diagonal ramp under the right track, toe 0.90 m, its side face on the
+    // band edge y = −0.2 m. Past where the ramp's top leaves the image the camera sees
+    // the face alone; its points fall into the belly band's edge strip or the track's
+    // as they round, and the coarse image's rows meet the face every other cell. A
+    // belly cell holding 51 cm of face beside a track cell holding its lowest 12 cm
+    // was a belly obstacle at 2.45 m: stop.
+    let mut c = Config::default();
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.3633;
+    (c.mount.x_m, c.mount.y_m, c.mount.z_m) = (0.1537, -0.0076, 0.8173);
+    (c.mount.roll_deg, c.mount.pitch_deg, c.mount.yaw_deg) = (4.579, 28.187, 3.688);
+    let band = Extent::Band {
+        from_m: -0.7,
+        to_m: -0.2,
+    };
+    let ramp = Element::ramp(0.8989, -0.45, 22.31, 16.27, band);
+    for v in [
+        analyse(vec![ramp.clone()], &c),
+        analyse_noisy(vec![ramp.clone()], &c, 114022),
+        analyse_noisy(vec![ramp.clone()], &c, 3),
+    ] {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        let f = v.feature.expect("a go has its feature");
+        assert_eq!(f.workcase, 6, "{f:?}");
+        assert!((f.distance_m.unwrap() - 0.8989).abs() < 0.04, "{f:?}");
+        assert!((f.gradient_deg.unwrap() - 22.31).abs() < 2.0, "{f:?}");
+    }
+    // Beside the same ramp, a block under the belly far taller than its clearance
+    // still stops the rover.
+    let block = Element::Block {
+        x_m: 1.4,
+        y_m: -0.1,
+        length_m: 0.2,
+        width_m: 0.2,
+        height_m: 0.75,
+    };
+    for v in [
+        analyse(vec![ramp.clone(), block.clone()], &c),
+        analyse_noisy(vec![ramp, block], &c, 114022),
+    ] {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Centre),
+            "{:?}",
+            v.hazards
+        );
+    }
+}

@@ -302,6 +302,9 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// (`crest` and `foot` both its mean, so the line through it climbs gently), unless
 /// its points hug one side of the cell (a face along the strip): a 12 cm step seen by
 /// a rolled Kinect v1 only where its image's top edge crosses it was a noisy go.
+/// Such cells rising [`STEEP_EXIT_RISE_M`] or more in [`SPREAD_TALL_STRIPS`] strips
+/// count however wide the band: a 21 cm step under a track, seen rising 5-6 cm in
+/// three strips where a rolled camera's view ends across it, was a noisy go.
 /// A ramp rising out of view at a passable slope is not this: it stays go, measured.
 /// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
 /// out of view in them.
@@ -312,6 +315,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let found = [Region::Left, Region::Belly, Region::Right].map(|region| {
         let (mut tall, mut short, mut nearest) = (0usize, 0usize, f32::INFINITY);
         let (mut short_nearest, mut inner) = (f32::INFINITY, 0usize);
+        let (mut spread_tall, mut spread_nearest) = (0usize, f32::INFINITY);
         for iy in inner_strips(f, region) {
             inner += 1;
             let ground = |ix: usize| {
@@ -385,13 +389,19 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             }
             short += 1;
             short_nearest = short_nearest.min(foot.0);
-            if steep && rise >= STEEP_EXIT_RISE_M {
-                tall += 1;
-                nearest = nearest.min(foot.0);
+            if rise >= STEEP_EXIT_RISE_M {
+                spread_tall += 1;
+                spread_nearest = spread_nearest.min(foot.0);
+                if steep {
+                    tall += 1;
+                    nearest = nearest.min(foot.0);
+                }
             }
         }
         let (steep, nearest) = if tall >= 2 {
             (true, nearest)
+        } else if spread_tall >= SPREAD_TALL_STRIPS {
+            (true, spread_nearest)
         } else {
             (broad(short, inner), short_nearest)
         };
@@ -417,6 +427,13 @@ const STEEP_EXIT_RISE_M: f32 = 0.05;
 /// metres: beyond what depth noise (about 1 cm at 2 m) and a cell's partial view make
 /// of level ground.
 const STEEP_EXIT_SHORT_RISE_M: f32 = 0.03;
+
+/// Fewest strips of a band whose cut cells hold a face noise spread (see
+/// [`steep_exit`]) rising [`STEEP_EXIT_RISE_M`] or more for that band to count as
+/// showing an unseen front, whatever the band's width: a face along a strip (a
+/// half-plane's side face) spreads the points of the two strips it lies between, never
+/// of three.
+const SPREAD_TALL_STRIPS: usize = 3;
 
 /// Whether `steep` of a band's `inner` strips make most of it (two thirds, and at
 /// least three): a front across the band, not a bump of rough ground (10-20 cm long,
@@ -794,12 +811,15 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
             // stands in the track: it is as high as the track there, not under the belly.
             // A track cell the image's top edge cuts (or past the horizon) is at least
             // as high as its top (a ramp rising out of view: its upper surface there is
-            // only partly seen).
+            // only partly seen). A face on the band's edge line splits its points
+            // between the two strips as they fall, so that one row's track cell may
+            // hold only its foot: the track cells of the rows before and after count
+            // too (a coarse camera's rows meet the face every other cell).
             let beside = [iy.checked_sub(1), Some(iy + 1)]
                 .into_iter()
                 .flatten()
                 .filter(|&j| j < s.ny && f.region[j] != Region::Belly)
-                .map(|j| s.cell(ix, j))
+                .flat_map(|j| (ix.saturating_sub(1)..(ix + 2).min(s.nx)).map(move |i| s.cell(i, j)))
                 .filter(|&j| f.seen[j])
                 .map(|j| {
                     let cell = &f.cells[j];
