@@ -1053,47 +1053,86 @@ fn a_step_the_view_ends_in_whose_face_noise_spreads_is_never_go() {
         height_m: 0.12,
         extent: Extent::Right,
     };
+    assert_never_go(&step, &c, [7204, 11], Side::Right);
+    // On that rig, climbable ramps the view ends in, noisy rough ground, and a low
+    // step seen whole stay go.
+    let controls = ViewEndControls {
+        track: Extent::Right,
+        ramp_toe_m: 2.1,
+        steepest_deg: 25.0,
+        correlation_m: 0.12,
+        rough_seeds: [4, 5, 6],
+        low_step_m: 1.6,
+    };
+    controls.assert_go(&c, 7204);
+}
+
+/// Asserts that `element` on rig `c` is not go, clean and with noise from each of
+/// `seeds`, and that a hazard on `side` says why.
+fn assert_never_go(element: &Element, c: &Config, seeds: [u64; 2], side: Side) {
     for v in [
-        analyse(vec![step.clone()], &c),
-        analyse_noisy(vec![step.clone()], &c, 7204),
-        analyse_noisy(vec![step.clone()], &c, 11),
+        analyse(vec![element.clone()], c),
+        analyse_noisy(vec![element.clone()], c, seeds[0]),
+        analyse_noisy(vec![element.clone()], c, seeds[1]),
     ] {
-        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        assert_ne!(v.decision, Decision::Go, "{element:?}: {:?}", v.feature);
         assert!(
-            v.hazards.iter().any(|h| h.side == Side::Right),
-            "{:?}",
+            v.hazards.iter().any(|h| h.side == side),
+            "{element:?}: {:?}",
             v.hazards
         );
     }
-    // On that rig, climbable ramps the view ends in, noisy rough ground, and a low
-    // step seen whole stay go.
-    for gradient in [15.0, 25.0] {
-        for extent in [Extent::Right, Extent::Full] {
-            let ramp = Element::ramp(2.1, 0.0, gradient, 0.0, extent);
-            for v in [
-                analyse(vec![ramp.clone()], &c),
-                analyse_noisy(vec![ramp.clone()], &c, 7204),
-            ] {
-                assert_eq!(v.decision, Decision::Go, "{ramp:?}: {:?}", v.hazards);
+}
+
+/// Ground a rig whose view ends on a hazard must still call go, clean and with noise:
+/// climbable ramps rising out of view (15° and `steepest_deg`, toe `ramp_toe_m`,
+/// under `track` and across the corridor), rough ground (±2.5 cm, `correlation_m`,
+/// noisy, one frame per seed) and a 7 cm step under `track` at `low_step_m`, seen whole.
+struct ViewEndControls {
+    track: Extent,
+    ramp_toe_m: f64,
+    steepest_deg: f64,
+    correlation_m: f64,
+    rough_seeds: [u64; 3],
+    low_step_m: f64,
+}
+
+impl ViewEndControls {
+    /// Asserts each control is go on `c`, the noisy frames drawn with `seed`.
+    fn assert_go(&self, c: &Config, seed: u64) {
+        for gradient in [15.0, self.steepest_deg] {
+            for extent in [self.track, Extent::Full] {
+                let ramp = Element::ramp(self.ramp_toe_m, 0.0, gradient, 0.0, extent);
+                for v in [
+                    analyse(vec![ramp.clone()], c),
+                    analyse_noisy(vec![ramp.clone()], c, seed),
+                ] {
+                    assert_eq!(v.decision, Decision::Go, "{ramp:?}: {:?}", v.hazards);
+                }
             }
         }
-    }
-    for seed in [4, 5, 6] {
-        let rough = Element::Rough {
-            amplitude_m: 0.025,
-            correlation_m: 0.12,
-            seed,
+        for rough_seed in self.rough_seeds {
+            let rough = Element::Rough {
+                amplitude_m: 0.025,
+                correlation_m: self.correlation_m,
+                seed: rough_seed,
+            };
+            let v = analyse_noisy(vec![rough], c, rough_seed);
+            assert_eq!(
+                v.decision,
+                Decision::Go,
+                "rough {rough_seed}: {:?}",
+                v.hazards
+            );
+        }
+        let low_step = Element::Step {
+            x_m: self.low_step_m,
+            height_m: 0.07,
+            extent: self.track,
         };
-        let v = analyse_noisy(vec![rough], &c, seed);
-        assert_eq!(v.decision, Decision::Go, "rough {seed}: {:?}", v.hazards);
+        let v = analyse_noisy(vec![low_step], c, seed);
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
     }
-    let low_step = Element::Step {
-        x_m: 1.6,
-        height_m: 0.07,
-        extent: Extent::Right,
-    };
-    let v = analyse_noisy(vec![low_step], &c, 7204);
-    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
 }
 
 #[test]
@@ -1111,47 +1150,18 @@ fn a_tall_step_seen_rising_a_few_centimetres_where_a_rolled_view_ends_is_never_g
         height_m: 0.212,
         extent: Extent::Right,
     };
-    for v in [
-        analyse(vec![step.clone()], &c),
-        analyse_noisy(vec![step.clone()], &c, 14024),
-        analyse_noisy(vec![step.clone()], &c, 5),
-    ] {
-        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-        assert!(
-            v.hazards.iter().any(|h| h.side == Side::Right),
-            "{:?}",
-            v.hazards
-        );
-    }
+    assert_never_go(&step, &c, [14024, 5], Side::Right);
     // On that rig, climbable ramps the view ends in, noisy rough ground, and a low
     // step seen whole stay go.
-    for gradient in [15.0, 22.0] {
-        for extent in [Extent::Right, Extent::Full] {
-            let ramp = Element::ramp(1.95, 0.0, gradient, 0.0, extent);
-            for v in [
-                analyse(vec![ramp.clone()], &c),
-                analyse_noisy(vec![ramp.clone()], &c, 14024),
-            ] {
-                assert_eq!(v.decision, Decision::Go, "{ramp:?}: {:?}", v.hazards);
-            }
-        }
-    }
-    for seed in [7, 8, 9] {
-        let rough = Element::Rough {
-            amplitude_m: 0.025,
-            correlation_m: 0.15,
-            seed,
-        };
-        let v = analyse_noisy(vec![rough], &c, seed);
-        assert_eq!(v.decision, Decision::Go, "rough {seed}: {:?}", v.hazards);
-    }
-    let low_step = Element::Step {
-        x_m: 1.5,
-        height_m: 0.07,
-        extent: Extent::Right,
+    let controls = ViewEndControls {
+        track: Extent::Right,
+        ramp_toe_m: 1.95,
+        steepest_deg: 22.0,
+        correlation_m: 0.15,
+        rough_seeds: [7, 8, 9],
+        low_step_m: 1.5,
     };
-    let v = analyse_noisy(vec![low_step], &c, 14024);
-    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    controls.assert_go(&c, 14024);
 }
 
 #[test]
