@@ -315,7 +315,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let found = [Region::Left, Region::Belly, Region::Right].map(|region| {
         let (mut tall, mut short, mut nearest) = (0usize, 0usize, f32::INFINITY);
         let (mut short_nearest, mut inner) = (f32::INFINITY, 0usize);
-        let (mut spread_tall, mut spread_nearest) = (0usize, f32::INFINITY);
+        let (mut any_tall, mut any_nearest) = (0usize, f32::INFINITY);
         for iy in inner_strips(f, region) {
             inner += 1;
             let ground = |ix: usize| {
@@ -390,8 +390,8 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             short += 1;
             short_nearest = short_nearest.min(foot.0);
             if rise >= STEEP_EXIT_RISE_M {
-                spread_tall += 1;
-                spread_nearest = spread_nearest.min(foot.0);
+                any_tall += 1;
+                any_nearest = any_nearest.min(foot.0);
                 if steep {
                     tall += 1;
                     nearest = nearest.min(foot.0);
@@ -400,8 +400,8 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         }
         let (steep, nearest) = if tall >= 2 {
             (true, nearest)
-        } else if spread_tall >= SPREAD_TALL_STRIPS {
-            (true, spread_nearest)
+        } else if any_tall >= SPREAD_TALL_STRIPS {
+            (true, any_nearest)
         } else {
             (broad(short, inner), short_nearest)
         };
@@ -428,11 +428,11 @@ const STEEP_EXIT_RISE_M: f32 = 0.05;
 /// of level ground.
 const STEEP_EXIT_SHORT_RISE_M: f32 = 0.03;
 
-/// Fewest strips of a band whose cut cells hold a face noise spread (see
-/// [`steep_exit`]) rising [`STEEP_EXIT_RISE_M`] or more for that band to count as
-/// showing an unseen front, whatever the band's width: a face along a strip (a
-/// half-plane's side face) spreads the points of the two strips it lies between, never
-/// of three.
+/// Fewest strips of a band whose climb into the cut cells rises [`STEEP_EXIT_RISE_M`]
+/// or more and is steep or a face noise spread (see [`steep_exit`]) for that band to
+/// count as showing an unseen front, whatever the band's width: a face along a strip
+/// (a half-plane's side face) spreads the points of the two strips it lies between,
+/// never of three.
 const SPREAD_TALL_STRIPS: usize = 3;
 
 /// Whether `steep` of a band's `inner` strips make most of it (two thirds, and at
