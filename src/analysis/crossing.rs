@@ -123,13 +123,26 @@ pub fn steps_and_slopes(
 /// most 6 cm over that lateral distance, well under a wheel radius. The track's two
 /// edge strips take no part: a face along the band's edge (a one-track ramp's side,
 /// the ground beyond a one-track descent) mixes two levels there.
+///
+/// An obstacle as wide as the track hides the ground beside it in its own shadow (a
+/// 40 cm boulder, seen from low). Then the ground the strips see again past the
+/// shadow tells: a ramp goes on rising behind what hid it, but ground past a boulder
+/// is back at its foot. When [`HIDDEN_TOP_BEYOND_STRIPS`] strips of a track, each
+/// climbing more than a wheel radius into its shadow, see ground again past it whose
+/// mean ([`ground_beyond`]) lies more than a wheel radius and rough ground's spread
+/// below the climb's top, the nearest of their climbs is a step at its foot: what
+/// stands there is over a wheel radius high, and its far side is not seen.
 pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let r = f.cfg.rover.wheel_radius_m as f32;
     let wheelbase = f.cfg.rover.wheelbase_m as f32;
     let reach = (HIDDEN_TOP_REACH_M / f.spec.voxel_m).round() as usize;
     let ground = |ix: usize, iy: usize| followed(f, surface, f.spec.cell(ix, iy));
     for region in [Region::Left, Region::Right] {
+        // Strips whose climb the ground past its shadow shows to be an obstacle, and
+        // the nearest such climb's foot.
+        let (mut beyond_strips, mut beyond_foot) = (0usize, f32::INFINITY);
         for iy in inner_strips(f, region) {
+            let mut beyond_here = false;
             for ix in 0..f.spec.nx.saturating_sub(1) {
                 let Some(z_exit) = ground(ix, iy) else {
                     continue;
@@ -163,22 +176,52 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                         }
                     }
                 }
-                if below < HIDDEN_TOP_MIN_CELLS || 3 * below < all {
-                    continue;
-                }
                 let foot = climb
                     .filter(|&(_, z)| z <= base + 0.5 * r)
                     .map(|(jx, _)| jx)
                     .max()
                     .unwrap_or(ix);
+                let foot_m = f.spec.x_centre(foot).max(0.0);
+                if below < HIDDEN_TOP_MIN_CELLS || 3 * below < all {
+                    let past = ground_beyond(f, surface, iy, ix + 1);
+                    if past.is_some_and(|z| z < top - r - HIDDEN_TOP_MARGIN_M) {
+                        beyond_here = true;
+                        beyond_foot = beyond_foot.min(foot_m);
+                    }
+                    continue;
+                }
                 verdict.add_hazard(Hazard {
                     kind: HazardKind::Step,
                     side: region.side(),
-                    distance_m: f.spec.x_centre(foot).max(0.0),
+                    distance_m: foot_m,
                 });
             }
+            beyond_strips += usize::from(beyond_here);
+        }
+        if beyond_strips >= HIDDEN_TOP_BEYOND_STRIPS {
+            verdict.add_hazard(Hazard {
+                kind: HazardKind::Step,
+                side: region.side(),
+                distance_m: beyond_foot,
+            });
         }
     }
+}
+
+/// The ground strip `iy` sees again past an unseen run that starts at row `from`
+/// (the shadow of what it climbed): the mean of the followed ground
+/// ([`followed`]) within [`BEYOND_MEAN_M`] of the first cell seen past the run,
+/// metres, so one dip of rough ground does not stand for the level; `None` when the
+/// strip sees no ground past it.
+fn ground_beyond(f: &Frame, surface: &[f32], iy: usize, from: usize) -> Option<f32> {
+    let ground = |ix: usize| followed(f, surface, f.spec.cell(ix, iy)).map(|z| (ix, z));
+    let (first, _) = (from..f.spec.nx).find_map(ground)?;
+    let x0 = f.spec.x_centre(first);
+    let (sum, n) = (first..f.spec.nx)
+        .take_while(|&ix| f.spec.x_centre(ix) - x0 <= BEYOND_MEAN_M)
+        .filter_map(ground)
+        .fold((0.0, 0u32), |(s, n), (_, z)| (s + z, n + 1));
+    Some(sum / n as f32)
 }
 
 /// A rise or fall hidden below the image. The rover stands on its ground (z = 0 at
@@ -456,6 +499,13 @@ const HIDDEN_TOP_MARGIN_M: f32 = 0.015;
 /// Fewest cells of ground beside a hidden top, more than a wheel radius below it, for
 /// [`hidden_tops`] to take it for an obstacle.
 const HIDDEN_TOP_MIN_CELLS: usize = 3;
+/// Fewest strips of a track whose ground past a climb's shadow lies too low for
+/// [`hidden_tops`] to take the climb for an obstacle: one strip may be a pebble's
+/// narrow top seen beside a dip.
+const HIDDEN_TOP_BEYOND_STRIPS: usize = 2;
+/// Length of ground past a shadow whose mean is its level ([`ground_beyond`]),
+/// metres: three cells, about a bump of rough ground.
+const BEYOND_MEAN_M: f32 = 0.1;
 
 /// The strips of a track but its two edge strips, where a face along the band's edge
 /// mixes two levels ([`hidden_tops`], [`blind_rise`]).
