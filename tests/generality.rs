@@ -1263,3 +1263,50 @@ fn a_boulder_whose_shadow_hides_the_ground_beside_it_is_never_go() {
         }
     }
 }
+
+#[test]
+fn a_face_measured_steeper_than_the_rover_climbs_is_never_go() {
+    // Two random rigs whose view ends on a too-steep ramp's first centimetres: the
+    // crossing tests saw a rise too short to judge, but the face fitted through the
+    // same cells is over the slope limit; both were go with that gradient reported.
+    // `sweep -- hazards 120 139 random` #119, noisy: a 320×240 camera 0.97 m high,
+    // pitched 44°, over a 34° ramp under the left track from 2.05 m (go, 32.4°).
+    // `near_edge -- 300 17 far` #70, clean: a Kinect v1 0.63 m high, pitched 37° and
+    // rolled 7°, over a 36° ramp across the corridor from 2.36 m (go, 33.3°).
+    let mut coarse = mounted([0.0746, -0.0448, 0.9682], [-1.7096, 43.862, -2.684]);
+    (coarse.camera.width, coarse.camera.height) = (320, 240);
+    coarse.camera.min_range_m = 0.496;
+    let mut rolled = mounted([0.178, 0.0612, 0.6309], [6.6178, 36.6631, 6.7969]);
+    rolled.camera.min_range_m = 0.421;
+    let coarse_ramp = Element::ramp(2.0473, 0.0, 33.895, 0.0, Extent::Left);
+    let rolled_ramp = Element::ramp(2.3648, 0.0, 35.631, 0.0, Extent::Full);
+    for v in [
+        analyse_noisy(vec![coarse_ramp], &coarse, 139119),
+        analyse(vec![rolled_ramp], &rolled),
+    ] {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        assert!(
+            v.hazards
+                .iter()
+                .any(|h| h.kind == HazardKind::Slope && h.side == Side::Left),
+            "{:?}",
+            v.hazards
+        );
+    }
+    // On both rigs, climbable ramps up to 27° that the view ends in, noisy rough
+    // ground and a low step stay go.
+    for (c, track, ramp_toe_m, seed) in [
+        (&coarse, LEFT_TRACK, 1.9, 139119),
+        (&rolled, Extent::Full, 2.2, 17070),
+    ] {
+        let controls = ViewEndControls {
+            track,
+            ramp_toe_m,
+            steepest_deg: 27.0,
+            correlation_m: 0.15,
+            rough_seeds: [7, 8, 9],
+            low_step_m: 1.5,
+        };
+        controls.assert_go(c, seed);
+    }
+}

@@ -16,7 +16,7 @@ use crate::config::Config;
 use crate::grid::VoxelGrid;
 use crate::grid::{Cell, GridSpec};
 use crate::projection::Projector;
-use crate::verdict::{Decision, Hazard, HazardKind, SeenTo, Side, Verdict};
+use crate::verdict::{Decision, Feature, Hazard, HazardKind, SeenTo, Side, Verdict};
 use crate::Error;
 
 /// Which lateral band of the corridor a strip of cells lies in.
@@ -318,11 +318,12 @@ impl Analyzer {
         let too_little = seen_of_visible < frame.cfg.analysis.min_seen_fraction as f32;
         decide(verdict, too_little, nearest_unseen);
         if verdict.decision == Decision::Go {
-            verdict.feature = Some(feature::analyse(
-                &frame,
-                &mut scratch.onset,
-                &mut scratch.use_cell,
-            ));
+            let measured = feature::analyse(&frame, &mut scratch.onset, &mut scratch.use_cell);
+            verdict.feature = Some(measured);
+            if too_steep_face(&measured, frame.cfg.rover.max_slope_deg, verdict) {
+                verdict.feature = None;
+                decide(verdict, false, nearest_unseen);
+            }
         }
         verdict.timing_us.feature = t1.elapsed().as_secs_f32() * 1e6;
     }
@@ -403,6 +404,37 @@ impl Analyzer {
     pub(crate) fn frame<'a>(&'a self, grid: &'a VoxelGrid) -> Frame<'a> {
         Frame::new(&self.fixed, &self.view, grid.cells())
     }
+}
+
+/// Whether a go's measured face (`measured`) is a plane steeper than the rover
+/// climbs (`max_slope_deg`, degrees; a low step's ±90° is not a plane); if so, a
+/// `slope` hazard at its toe, on the sides its workcase names, goes into `verdict`.
+///
+/// The crossing tests judge the cells strip by strip and found nothing; the face
+/// fitted through the same cells says otherwise where the view ends on a ramp's first
+/// centimetres (cells the image's top edge cuts, rising 3-4 cm: a 36° ramp measured
+/// 33°, the rise too short for the steep-exit test). The safe reading wins.
+fn too_steep_face(measured: &Feature, max_slope_deg: f64, verdict: &mut Verdict) -> bool {
+    let (Some(gradient), Some(distance_m)) = (measured.gradient_deg, measured.distance_m) else {
+        return false;
+    };
+    let steep = f64::from(gradient.abs());
+    if steep <= max_slope_deg || steep >= 90.0 - 1e-3 {
+        return false;
+    }
+    let sides: &[Side] = match measured.workcase {
+        3 | 4 | 9 => &[Side::Left],
+        5 | 6 | 10 => &[Side::Right],
+        _ => &[Side::Left, Side::Right],
+    };
+    for &side in sides {
+        verdict.add_hazard(Hazard {
+            kind: HazardKind::Slope,
+            side,
+            distance_m: distance_m.max(0.0),
+        });
+    }
+    true
 }
 
 /// The decision from the hazards found: stop for any but unknown ground; unknown
