@@ -580,6 +580,41 @@ fn a_drop_off_is_kept_down_to_the_wheels() {
 }
 
 #[test]
+fn a_step_across_the_corridor_is_kept_down_to_the_wheels() {
+    // A 0.15 m step (over the 0.11 m wheel radius) under both tracks: once its foot is
+    // in the blind zone the frame sees only its top, level ground it cannot place;
+    // the map keeps the face, and its distance falls with the travel.
+    let edge = 1.415;
+    let terrain = Terrain::new(vec![Element::Step {
+        x_m: edge,
+        height_m: 0.15,
+        extent: Extent::Full,
+    }]);
+    let (fused, single) = nearest_hazard_per_frame(&terrain, 27, HazardKind::Step);
+    // Reported where a wheel meets the face: within a wheel radius before the edge.
+    let d0 = f64::from(fused[0].expect("a step ahead"));
+    assert!(d0 <= edge && d0 >= edge - 0.11, "first seen at {d0:.3}");
+    for (k, d) in fused.iter().enumerate() {
+        let want = d0 - k as f64 * STEP;
+        let got =
+            f64::from(d.unwrap_or_else(|| panic!("frame {k}: the step is lost at {want:.2} m")));
+        assert!(
+            (got - want).abs() <= 0.02,
+            "frame {k}: {got:.3}, expected {want:.3}"
+        );
+    }
+    // Alone, a frame whose view starts past the foot does not report the step there.
+    let view_start = 0.64;
+    assert!(
+        single.iter().enumerate().any(|(k, d)| {
+            let want = d0 - k as f64 * STEP;
+            want < view_start && d.is_none_or(|d| (f64::from(d) - want).abs() > 0.05)
+        }),
+        "single frames keep the step in the blind zone? {single:?}"
+    );
+}
+
+#[test]
 fn a_ramp_toe_keeps_its_distance_into_the_blind_zone() {
     // A 20° ramp under the whole corridor, toe 1.2 m out: go, workcase 2, the toe's
     // distance falling with the travel as the toe passes out of view.
