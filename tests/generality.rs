@@ -1310,3 +1310,46 @@ fn a_face_measured_steeper_than_the_rover_climbs_is_never_go() {
         controls.assert_go(c, seed);
     }
 }
+
+#[test]
+fn a_steep_face_met_obliquely_stops_where_its_toe_line_meets_each_track() {
+    // A 35° face whose toe line runs at 50-60° to the axle climbs only 19-24° along the
+    // strips, under the slope limit: the crossing tests pass it, the face fit measures
+    // its steepest gradient. The hazard stands where the toe line is nearest within
+    // each track, by hand: x = toe − tan(alpha)·y at the track's edge y = ±0.2 or ±0.7.
+    let config = Config::default();
+    let toe = 1.17;
+    for alpha in [54.0f64, -54.0, 50.0, -60.0] {
+        let v = analyse(
+            vec![Element::ramp(toe, 0.0, 35.0, alpha, Extent::Full)],
+            &config,
+        );
+        assert_eq!(v.decision, Decision::Stop, "alpha {alpha}: {:?}", v.feature);
+        let t = alpha.to_radians().tan();
+        for (side, edges) in [(Side::Left, [0.2, 0.7]), (Side::Right, [-0.2, -0.7])] {
+            let want = edges
+                .map(|y| toe - t * y)
+                .into_iter()
+                .fold(f64::INFINITY, f64::min);
+            let got = v
+                .hazards
+                .iter()
+                .filter(|h| h.side == side && h.kind == HazardKind::Slope)
+                .map(|h| f64::from(h.distance_m))
+                .fold(f64::INFINITY, f64::min);
+            assert!(
+                got <= want.max(0.0) + 0.05,
+                "alpha {alpha} {side:?}: slope at {got:.3}, the toe line reaches the track at {want:.3}: {:?}",
+                v.hazards
+            );
+        }
+    }
+    // The same faces at a climbable 20°: go, workcase 7, measured.
+    for alpha in [54.0, -54.0, 50.0, -60.0] {
+        let v = analyse(
+            vec![Element::ramp(toe, 0.0, 20.0, alpha, Extent::Full)],
+            &config,
+        );
+        assert_go(&v, 7, toe, 20.0, Some(alpha));
+    }
+}

@@ -11,7 +11,7 @@ mod visibility;
 
 use std::time::Instant;
 
-use crate::config::Config;
+use crate::config::{Config, RoverConfig};
 #[cfg(test)]
 use crate::grid::VoxelGrid;
 use crate::grid::{Cell, GridSpec};
@@ -320,7 +320,7 @@ impl Analyzer {
         if verdict.decision == Decision::Go {
             let measured = feature::analyse(&frame, &mut scratch.onset, &mut scratch.use_cell);
             verdict.feature = Some(measured);
-            if too_steep_face(&measured, frame.cfg.rover.max_slope_deg, verdict) {
+            if too_steep_face(&measured, &frame.cfg.rover, verdict) {
                 verdict.feature = None;
                 decide(verdict, false, nearest_unseen);
             }
@@ -407,31 +407,46 @@ impl Analyzer {
 }
 
 /// Whether a go's measured face (`measured`) is a plane steeper than the rover
-/// climbs (`max_slope_deg`, degrees; a low step's ±90° is not a plane); if so, a
-/// `slope` hazard at its toe, on the sides its workcase names, goes into `verdict`.
+/// climbs (`rover.max_slope_deg`, degrees; a low step's ±90° is not a plane); if so,
+/// a `slope` hazard on each side its workcase names goes into `verdict`, where the
+/// toe line is nearest within that side's wheel track, metres.
 ///
 /// The crossing tests judge the cells strip by strip and found nothing; the face
 /// fitted through the same cells says otherwise where the view ends on a ramp's first
 /// centimetres (cells the image's top edge cuts, rising 3-4 cm: a 36° ramp measured
-/// 33°, the rise too short for the steep-exit test). The safe reading wins.
-fn too_steep_face(measured: &Feature, max_slope_deg: f64, verdict: &mut Verdict) -> bool {
+/// 33°, the rise too short for the steep-exit test), and on a steep face met
+/// obliquely (a 35° face whose toe line runs at 54° to the axle climbs 22° along the
+/// strips). The safe reading wins.
+fn too_steep_face(measured: &Feature, rover: &RoverConfig, verdict: &mut Verdict) -> bool {
     let (Some(gradient), Some(distance_m)) = (measured.gradient_deg, measured.distance_m) else {
         return false;
     };
     let steep = f64::from(gradient.abs());
-    if steep <= max_slope_deg || steep >= 90.0 - 1e-3 {
+    if steep <= rover.max_slope_deg || steep >= 90.0 - 1e-3 {
         return false;
     }
-    let sides: &[Side] = match measured.workcase {
-        3 | 4 | 9 => &[Side::Left],
-        5 | 6 | 10 => &[Side::Right],
-        _ => &[Side::Left, Side::Right],
+    // The toe line, x = distance − tan(alpha)·(y − y_ref), is read at the centre line
+    // or, for one side, at that track's centre (as the workcase's distance is).
+    let centre = 0.5 * (rover.belly_half_width_m + rover.track_outer_m);
+    let (sides, y_ref): (&[Side], f64) = match measured.workcase {
+        3 | 4 | 9 => (&[Side::Left], centre),
+        5 | 6 | 10 => (&[Side::Right], -centre),
+        _ => (&[Side::Left, Side::Right], 0.0),
     };
+    let lean = measured
+        .alpha_deg
+        .map_or(0.0, |a| f64::from(a).to_radians().tan());
     for &side in sides {
+        let sign = if side == Side::Left { 1.0 } else { -1.0 };
+        // A line is nearest at one of the track's edges.
+        let nearest = [rover.belly_half_width_m, rover.track_outer_m]
+            .map(|y| f64::from(distance_m) - lean * (sign * y - y_ref))
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
         verdict.add_hazard(Hazard {
             kind: HazardKind::Slope,
             side,
-            distance_m: distance_m.max(0.0),
+            distance_m: nearest.max(0.0) as f32,
         });
     }
     true
