@@ -569,6 +569,34 @@ fn random_scene_families_on_random_rigs_never_give_a_false_go() {
 }
 
 #[test]
+fn impassable_edges_the_hazard_sweep_does_not_draw_are_never_go_on_random_rigs() {
+    // A step down under one track, a descent steeper than the limit, a block in a
+    // track, a ditch across the corridor or under one track (`sim::random::
+    // edge_scene_within`), where a random rig sees both tracks; clean and noisy.
+    use rand::SeedableRng;
+    use rover_terrain::sim::{families, random};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+    let mut go = Vec::new();
+    for i in 0..10 {
+        let rig = families::Rig::random(&mut rng);
+        let (near, far) = families::footprint(&rig.config);
+        let (terrain, _) =
+            random::edge_scene_within(&mut rng, i, near.max(0.9)..(far - 0.15).min(2.4));
+        for noise in [None, Some(1200 + i as u64)] {
+            let e = terrain.elements.clone();
+            let v = match noise {
+                None => analyse(e, &rig.config),
+                Some(seed) => analyse_noisy(e, &rig.config, seed),
+            };
+            if v.decision == Decision::Go {
+                go.push(format!("#{i} noise {noise:?}: {:?}", terrain.elements));
+            }
+        }
+    }
+    assert!(go.is_empty(), "{go:#?}");
+}
+
+#[test]
 fn rough_ground_under_a_full_width_ramp_changes_no_verdict_and_keeps_the_measures() {
     // ±2.5 cm bumps swing a wheel-radius run on a 24° ramp past 30°, and bias a face
     // fit that keeps only cells over the rise threshold: neither may show.

@@ -160,3 +160,65 @@ pub fn hazard_scene_within<R: Rng>(
     };
     (Terrain::new(vec![el]), want)
 }
+
+/// An impassable edge scene that [`hazard_scene_within`] does not draw, of family
+/// `i % 5`, its edge at a random distance in `at`, metres: a step down of 16-50 cm
+/// under one track only; a descent steeper than the slope limit (31.5-45°, full width
+/// or one track); a block of 13-30 cm standing in a track; a ditch 15-60 cm deep and
+/// 0.3-0.6 m long across the corridor; the same ditch under one track. Every one is a
+/// stop (its kind depends on how the rig sees it, so none is named): a wheel drops
+/// into a ditch longer than its diameter, and the rover descends no steeper than it
+/// climbs.
+pub fn edge_scene_within<R: Rng>(
+    rng: &mut R,
+    i: usize,
+    at: std::ops::Range<f64>,
+) -> (Terrain, Expectation) {
+    let x: f64 = rng.gen_range(at);
+    let left = rng.gen_bool(0.5);
+    let (track, track_y) = if left {
+        (Extent::Left, 0.45)
+    } else {
+        (Extent::Right, -0.45)
+    };
+    let ditch = |width_m: f64, y_m: f64, rng: &mut R| Element::Block {
+        x_m: x,
+        y_m,
+        length_m: rng.gen_range(0.3..0.6),
+        width_m,
+        height_m: -rng.gen_range(0.15..0.6),
+    };
+    let el = match i % 5 {
+        0 => Element::Step {
+            x_m: x,
+            height_m: -rng.gen_range(0.16..0.5),
+            extent: track,
+        },
+        1 => Element::Ramp {
+            toe_x_m: x,
+            ref_y_m: 0.0,
+            gradient_deg: -rng.gen_range(31.5..45.0),
+            alpha_deg: 0.0,
+            extent: [Extent::Full, track][rng.gen_range(0..2)],
+            cap_m: None,
+        },
+        2 => Element::Block {
+            x_m: x,
+            y_m: track_y + rng.gen_range(-0.1..0.1),
+            length_m: rng.gen_range(0.2..0.4),
+            width_m: rng.gen_range(0.2..0.4),
+            height_m: rng.gen_range(0.13..0.3),
+        },
+        3 => ditch(2.0, 0.0, rng),
+        _ => ditch(0.5, track_y, rng),
+    };
+    let want = Expectation {
+        verdict: Decision::Stop,
+        workcase: None,
+        distance_m: None,
+        gradient_deg: None,
+        alpha_deg: None,
+        hazard: None,
+    };
+    (Terrain::new(vec![el]), want)
+}
