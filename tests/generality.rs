@@ -571,13 +571,14 @@ fn random_scene_families_on_random_rigs_never_give_a_false_go() {
 #[test]
 fn impassable_edges_the_hazard_sweep_does_not_draw_are_never_go_on_random_rigs() {
     // A step down under one track, a descent steeper than the limit, a block in a
-    // track, a ditch across the corridor or under one track (`sim::random::
-    // edge_scene_within`), where a random rig sees both tracks; clean and noisy.
+    // track, a ditch across the corridor or under one track, a too-steep ramp met
+    // obliquely (`sim::random::edge_scene_within`, two of each), where a random rig
+    // sees both tracks; clean and noisy.
     use rand::SeedableRng;
     use rover_terrain::sim::{families, random};
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
     let mut go = Vec::new();
-    for i in 0..10 {
+    for i in 0..12 {
         let rig = families::Rig::random(&mut rng);
         let (near, far) = families::footprint(&rig.config);
         let (terrain, _) =

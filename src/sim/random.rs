@@ -162,10 +162,12 @@ pub fn hazard_scene_within<R: Rng>(
 }
 
 /// An impassable edge scene that [`hazard_scene_within`] does not draw, of family
-/// `i % 5`, its edge at a random distance in `at`, metres: a step down of 16-50 cm
+/// `i % 6`, its edge at a random distance in `at`, metres: a step down of 16-50 cm
 /// under one track only; a descent steeper than the slope limit (31.5-45°, full width
 /// or one track); a block of 13-30 cm standing in a track; a ditch 15-60 cm deep and
-/// 0.3-0.6 m long across the corridor; the same ditch under one track. Every one is a
+/// 0.3-0.6 m long across the corridor; the same ditch under one track; a ramp steeper
+/// than the limit (31.5-40°) met obliquely (its toe line at 20-60° to the axle, full
+/// width or one track: along the strips it may climb under the limit). Every one is a
 /// stop (its kind depends on how the rig sees it, so none is named): a wheel drops
 /// into a ditch longer than its diameter, and the rover descends no steeper than it
 /// climbs.
@@ -188,7 +190,7 @@ pub fn edge_scene_within<R: Rng>(
         width_m,
         height_m: -rng.gen_range(0.15..0.6),
     };
-    let el = match i % 5 {
+    let el = match i % 6 {
         0 => Element::Step {
             x_m: x,
             height_m: -rng.gen_range(0.16..0.5),
@@ -210,7 +212,19 @@ pub fn edge_scene_within<R: Rng>(
             height_m: rng.gen_range(0.13..0.3),
         },
         3 => ditch(2.0, 0.0, rng),
-        _ => ditch(0.5, track_y, rng),
+        4 => ditch(0.5, track_y, rng),
+        _ => {
+            let full = rng.gen_bool(0.5);
+            let sign = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+            Element::Ramp {
+                toe_x_m: x,
+                ref_y_m: if full { 0.0 } else { track_y },
+                gradient_deg: rng.gen_range(31.5..40.0),
+                alpha_deg: sign * rng.gen_range(20.0..60.0),
+                extent: if full { Extent::Full } else { track },
+                cap_m: None,
+            }
+        }
     };
     let want = Expectation {
         verdict: Decision::Stop,
