@@ -8,9 +8,10 @@
 //! does not draw (a step down under one track, a descent steeper than the limit, a
 //! block in a track, ditches, a too-steep ramp met obliquely), also on random rigs,
 //! where any verdict but go passes (a ditch whose floor the camera cannot see is
-//! unknown ground). `ONLY=3,7` checks just those scenes of the sweep. The last line
-//! counts the failures and, of them, the gos where a stop was due. `DUMP=DIR`
-//! writes each failing scene's terrain (`N.json`, for `cells`) and configuration
+//! unknown ground); `-- oblique N SEED`, climbable ramps up and down whose toe line
+//! runs at 20-60° to the axle, on random rigs, judged go or not. `ONLY=3,7` checks
+//! just those scenes of the sweep. The last line counts the failures and, of them,
+//! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain (`N.json`, for `cells`) and configuration
 //! (`N.toml`, for `cells`' `CONFIG` and `rover-terrain inspect --config`) there.
 
 use rand::SeedableRng;
@@ -49,6 +50,17 @@ fn main() {
                 let (near, far) = families::footprint(&rig.config);
                 let at = near.max(0.9)..(far - 0.15).min(2.4);
                 let (t, w) = random::edge_scene_within(&mut rng, i, at);
+                (t, w, rig.config)
+            }
+            "oblique" => {
+                // Climbable ramps up and down met obliquely, on random rigs.
+                let rig = families::Rig::random(&mut rng);
+                let (near, far) = families::footprint(&rig.config);
+                let lo = near.max(0.9);
+                let (t, w) = random::oblique_scene_within(
+                    &mut rng,
+                    lo..(far - 0.15).min(2.4).max(lo + 0.05),
+                );
                 (t, w, rig.config)
             }
             "hazards" => {

@@ -236,3 +236,58 @@ pub fn edge_scene_within<R: Rng>(
     };
     (Terrain::new(vec![el]), want)
 }
+
+/// A climbable ramp met obliquely, its toe at a random distance in `at`, metres: up
+/// 10-27° or down 8-20°, its toe line at 20-60° to the axle either way, across the
+/// corridor or under one wheel track (the track band, its side faces along the track's
+/// edges). Expected go; no workcase is named (the workcases have no diagonal descent)
+/// and nothing is measured.
+pub fn oblique_scene_within<R: Rng>(
+    rng: &mut R,
+    at: std::ops::Range<f64>,
+) -> (Terrain, Expectation) {
+    let x: f64 = rng.gen_range(at);
+    let full = rng.gen_bool(0.5);
+    let left = rng.gen_bool(0.5);
+    let sign = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+    let alpha = sign * rng.gen_range(20.0..60.0);
+    let gradient = if rng.gen_bool(0.5) {
+        rng.gen_range(10.0..27.0)
+    } else {
+        -rng.gen_range(8.0..20.0)
+    };
+    let (ref_y_m, extent) = match (full, left) {
+        (true, _) => (0.0, Extent::Full),
+        (false, true) => (
+            0.45,
+            Extent::Band {
+                from_m: 0.2,
+                to_m: 0.7,
+            },
+        ),
+        (false, false) => (
+            -0.45,
+            Extent::Band {
+                from_m: -0.7,
+                to_m: -0.2,
+            },
+        ),
+    };
+    let ramp = Element::Ramp {
+        toe_x_m: x,
+        ref_y_m,
+        gradient_deg: gradient,
+        alpha_deg: alpha,
+        extent,
+        cap_m: None,
+    };
+    let want = Expectation {
+        verdict: Decision::Go,
+        workcase: None,
+        distance_m: None,
+        gradient_deg: None,
+        alpha_deg: None,
+        hazard: None,
+    };
+    (Terrain::new(vec![ramp]), want)
+}
