@@ -34,33 +34,18 @@ fn main() {
     for i in 0..n {
         let mut tol = (CLEAN, NOISY);
         let (terrain, want, config) = match mode {
-            "hazards" if random_rig => {
-                // The edge where the rig sees both tracks (a hazard past the view is
-                // not judged by one frame; one below the image is the memory's).
+            // On random rigs (`edges` and `oblique` always, `hazards` when asked), each
+            // scene where its rig sees both tracks.
+            "edges" | "oblique" | "hazards" if random_rig || mode != "hazards" => {
                 let rig = families::Rig::random(&mut rng);
-                let (near, far) = families::footprint(&rig.config);
-                let at = near.max(0.9)..(far - 0.15).min(2.4);
-                let (t, w) = random::hazard_scene_within(&mut rng, i, at);
-                (t, w, rig.config)
-            }
-            "edges" => {
-                // Impassable edges the hazard sweep does not draw, on random rigs,
-                // where the rig sees both tracks.
-                let rig = families::Rig::random(&mut rng);
-                let (near, far) = families::footprint(&rig.config);
-                let at = near.max(0.9)..(far - 0.15).min(2.4);
-                let (t, w) = random::edge_scene_within(&mut rng, i, at);
-                (t, w, rig.config)
-            }
-            "oblique" => {
-                // Climbable ramps up and down met obliquely, on random rigs.
-                let rig = families::Rig::random(&mut rng);
-                let (near, far) = families::footprint(&rig.config);
-                let lo = near.max(0.9);
-                let (t, w) = random::oblique_scene_within(
-                    &mut rng,
-                    lo..(far - 0.15).min(2.4).max(lo + 0.05),
-                );
+                let at = families::judged_span(&rig.config);
+                let (t, w) = match mode {
+                    "hazards" => random::hazard_scene_within(&mut rng, i, at),
+                    // Impassable edges the hazard sweep does not draw.
+                    "edges" => random::edge_scene_within(&mut rng, i, at),
+                    // Climbable ramps up and down met obliquely.
+                    _ => random::oblique_scene_within(&mut rng, at),
+                };
                 (t, w, rig.config)
             }
             "hazards" => {

@@ -580,9 +580,8 @@ fn impassable_edges_the_hazard_sweep_does_not_draw_are_never_go_on_random_rigs()
     let mut go = Vec::new();
     for i in 0..12 {
         let rig = families::Rig::random(&mut rng);
-        let (near, far) = families::footprint(&rig.config);
-        let (terrain, _) =
-            random::edge_scene_within(&mut rng, i, near.max(0.9)..(far - 0.15).min(2.4));
+        let at = families::judged_span(&rig.config);
+        let (terrain, _) = random::edge_scene_within(&mut rng, i, at);
         for noise in [None, Some(1200 + i as u64)] {
             let e = terrain.elements.clone();
             let v = match noise {

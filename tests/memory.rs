@@ -565,18 +565,24 @@ fn a_drop_off_is_kept_down_to_the_wheels() {
         depth_m: 0.6,
     }]);
     let (fused, single) = nearest_hazard_per_frame(&terrain, 27, HazardKind::DropOff);
-    let d0 = f64::from(fused[0].expect("a drop-off ahead"));
+    assert_falls_with_the_travel(&fused, "drop-off");
+    assert!(single.iter().any(Option::is_none), "single frames keep it?");
+}
+
+/// The hazard's distance per frame (`fused`, one frame per [`STEP`] driven) falls by
+/// the step (± 2 cm) from its first frame to the last; the first, metres.
+fn assert_falls_with_the_travel(fused: &[Option<f32>], what: &str) -> f64 {
+    let d0 = f64::from(fused[0].unwrap_or_else(|| panic!("no {what} ahead")));
     for (k, d) in fused.iter().enumerate() {
         let want = d0 - k as f64 * STEP;
-        let got = f64::from(
-            d.unwrap_or_else(|| panic!("frame {k}: the drop-off is lost at {want:.2} m")),
-        );
+        let got =
+            f64::from(d.unwrap_or_else(|| panic!("frame {k}: the {what} is lost at {want:.2} m")));
         assert!(
             (got - want).abs() <= 0.02,
             "frame {k}: {got:.3}, expected {want:.3}"
         );
     }
-    assert!(single.iter().any(Option::is_none), "single frames keep it?");
+    d0
 }
 
 #[test]
@@ -591,18 +597,9 @@ fn a_step_across_the_corridor_is_kept_down_to_the_wheels() {
         extent: Extent::Full,
     }]);
     let (fused, single) = nearest_hazard_per_frame(&terrain, 27, HazardKind::Step);
+    let d0 = assert_falls_with_the_travel(&fused, "step");
     // Reported where a wheel meets the face: within a wheel radius before the edge.
-    let d0 = f64::from(fused[0].expect("a step ahead"));
     assert!(d0 <= edge && d0 >= edge - 0.11, "first seen at {d0:.3}");
-    for (k, d) in fused.iter().enumerate() {
-        let want = d0 - k as f64 * STEP;
-        let got =
-            f64::from(d.unwrap_or_else(|| panic!("frame {k}: the step is lost at {want:.2} m")));
-        assert!(
-            (got - want).abs() <= 0.02,
-            "frame {k}: {got:.3}, expected {want:.3}"
-        );
-    }
     // Alone, a frame whose view starts past the foot does not report the step there.
     let view_start = 0.64;
     assert!(

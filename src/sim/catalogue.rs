@@ -51,6 +51,20 @@ pub struct Expectation {
     pub hazard: Option<HazardKind>,
 }
 
+impl Expectation {
+    /// Only the decision: no workcase, measure or deciding hazard named.
+    pub fn decision(verdict: Decision) -> Self {
+        Expectation {
+            verdict,
+            workcase: None,
+            distance_m: None,
+            gradient_deg: None,
+            alpha_deg: None,
+            hazard: None,
+        }
+    }
+}
+
 /// How a scene's frame is made.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SceneConfig {
@@ -94,12 +108,8 @@ fn go(workcase: u8, d: Option<f64>, g: Option<f64>, a: Option<f64>) -> Expectati
 
 fn halt(verdict: Decision, hazard: HazardKind) -> Expectation {
     Expectation {
-        verdict,
-        workcase: None,
-        distance_m: None,
-        gradient_deg: None,
-        alpha_deg: None,
         hazard: Some(hazard),
+        ..Expectation::decision(verdict)
     }
 }
 

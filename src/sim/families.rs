@@ -206,6 +206,16 @@ pub fn footprint(config: &Config) -> (f64, f64) {
     }
 }
 
+/// Where a random rig's one frame can judge an edge on both tracks, metres: from the
+/// [`footprint`]'s near end (not nearer than 0.9 m) to 0.15 m before its far end (not
+/// past 2.4 m). A hazard past the view is not one frame's to judge; one below the
+/// image is the terrain memory's.
+pub fn judged_span(config: &Config) -> std::ops::Range<f64> {
+    let (near, far) = footprint(config);
+    let lo = near.max(0.9);
+    lo..(far - 0.15).min(2.4).max(lo + 0.05)
+}
+
 /// One drawn scene.
 #[derive(Debug, Clone)]
 pub struct Draw {
@@ -241,35 +251,17 @@ fn go(wc: u8, d: Option<f64>, g: Option<f64>, a: Option<f64>) -> Expectation {
 
 fn stop(hazard: HazardKind) -> Expectation {
     Expectation {
-        verdict: Decision::Stop,
-        workcase: None,
-        distance_m: None,
-        gradient_deg: None,
-        alpha_deg: None,
         hazard: Some(hazard),
+        ..Expectation::decision(Decision::Stop)
     }
 }
 
 fn stop_any() -> Expectation {
-    Expectation {
-        verdict: Decision::Stop,
-        workcase: None,
-        distance_m: None,
-        gradient_deg: None,
-        alpha_deg: None,
-        hazard: None,
-    }
+    Expectation::decision(Decision::Stop)
 }
 
 fn go_any() -> Expectation {
-    Expectation {
-        verdict: Decision::Go,
-        workcase: None,
-        distance_m: None,
-        gradient_deg: None,
-        alpha_deg: None,
-        hazard: None,
-    }
+    Expectation::decision(Decision::Go)
 }
 
 fn rough<R: Rng>(rng: &mut R) -> Element {

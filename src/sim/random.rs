@@ -151,12 +151,8 @@ pub fn hazard_scene_within<R: Rng>(
         ),
     };
     let want = Expectation {
-        verdict,
-        workcase: None,
-        distance_m: None,
-        gradient_deg: None,
-        alpha_deg: None,
         hazard,
+        ..Expectation::decision(verdict)
     };
     (Terrain::new(vec![el]), want)
 }
@@ -226,15 +222,10 @@ pub fn edge_scene_within<R: Rng>(
             }
         }
     };
-    let want = Expectation {
-        verdict: Decision::Stop,
-        workcase: None,
-        distance_m: None,
-        gradient_deg: None,
-        alpha_deg: None,
-        hazard: None,
-    };
-    (Terrain::new(vec![el]), want)
+    (
+        Terrain::new(vec![el]),
+        Expectation::decision(Decision::Stop),
+    )
 }
 
 /// A climbable ramp met obliquely, its toe at a random distance in `at`, metres: up
@@ -281,13 +272,8 @@ pub fn oblique_scene_within<R: Rng>(
         extent,
         cap_m: None,
     };
-    let want = Expectation {
-        verdict: Decision::Go,
-        workcase: None,
-        distance_m: None,
-        gradient_deg: None,
-        alpha_deg: None,
-        hazard: None,
-    };
-    (Terrain::new(vec![ramp]), want)
+    (
+        Terrain::new(vec![ramp]),
+        Expectation::decision(Decision::Go),
+    )
 }
