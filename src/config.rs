@@ -615,6 +615,12 @@ impl MountConfig {
 }
 
 impl RoverConfig {
+    /// Centre line of the left wheel track, metres (the right one's is its mirror):
+    /// midway between the belly band's edge and the track's outer edge.
+    pub fn track_centre_m(&self) -> f64 {
+        0.5 * (self.belly_half_width_m + self.track_outer_m)
+    }
+
     /// `[rover]`: positive sizes, slopes and tilt limits below 90°, tracks outside the belly band.
     fn check(&self) -> Result<(), Invalid> {
         let r = self;

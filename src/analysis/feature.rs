@@ -445,7 +445,7 @@ fn one_face_or_nearer(
     let Some(both) = both.filter(|_| a.left && a.right) else {
         return (a, both);
     };
-    let tc = track_centre(f);
+    let tc = f.cfg.rover.track_centre_m();
     let mut one = |left: bool| {
         let p = fit_face(f, onset, use_cell, a.dir, left, !left)?;
         let (own, n) = residuals(f, use_cell, &p);
@@ -466,11 +466,6 @@ fn one_face_or_nearer(
     (a, Some(both))
 }
 
-/// Centre line of the left track, metres (the right one's is its mirror).
-fn track_centre(f: &Frame) -> f64 {
-    0.5 * (f.cfg.rover.belly_half_width_m + f.cfg.rover.track_outer_m)
-}
-
 /// Step 4: (distance, gradient, alpha) of the face: from the fitted plane when it
 /// is a slope the right way, else from the onsets (a low step).
 fn measures(
@@ -479,7 +474,7 @@ fn measures(
     plane: Option<Plane>,
     a: Affected,
 ) -> (f64, f64, f64) {
-    let tc = track_centre(f);
+    let tc = f.cfg.rover.track_centre_m();
     let y_ref = match (a.left, a.right) {
         (true, true) => 0.0,
         (true, false) => tc,

@@ -427,7 +427,7 @@ fn too_steep_face(measured: &Feature, rover: &RoverConfig, verdict: &mut Verdict
     }
     // The toe line, x = distance − tan(alpha)·(y − y_ref), is read at the centre line
     // or, for one side, at that track's centre (as the workcase's distance is).
-    let centre = 0.5 * (rover.belly_half_width_m + rover.track_outer_m);
+    let centre = rover.track_centre_m();
     let (sides, y_ref): (&[Side], f64) = match measured.workcase {
         3 | 4 | 9 => (&[Side::Left], centre),
         5 | 6 | 10 => (&[Side::Right], -centre),

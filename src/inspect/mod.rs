@@ -135,8 +135,7 @@ impl<'a> Scene<'a> {
 
     /// Lateral centre of a side, metres.
     pub fn side_centre(&self, side: Side) -> f32 {
-        let r = &self.config.rover;
-        let mid = ((r.belly_half_width_m + r.track_outer_m) / 2.0) as f32;
+        let mid = self.config.rover.track_centre_m() as f32;
         match side {
             Side::Left => mid,
             Side::Centre => 0.0,

@@ -230,8 +230,7 @@ impl TerrainMemory {
             hazards: heapless::Vec::new(),
             view_start: [0.0; 3],
             side_y: {
-                let mid =
-                    (0.5 * (config.rover.belly_half_width_m + config.rover.track_outer_m)) as f32;
+                let mid = config.rover.track_centre_m() as f32;
                 [mid, 0.0, -mid]
             },
             min_points: config.analysis.min_points_per_cell,

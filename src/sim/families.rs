@@ -179,7 +179,7 @@ pub fn footprint(config: &Config) -> (f64, f64) {
         config.camera.width as usize,
         config.camera.height as usize,
     );
-    let tc = 0.5 * (config.rover.belly_half_width_m + config.rover.track_outer_m);
+    let tc = config.rover.track_centre_m();
     let (w, h) = (p.width() as f64, p.height() as f64);
     let visible = |x: f64| {
         [tc, -tc]
