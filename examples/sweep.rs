@@ -5,14 +5,15 @@
 //! `sim::families` on the default rig or on random mounts and cameras, or
 //! `-- hazards N SEED random` for the go/stop edges on random rigs, each edge where
 //! the rig sees the tracks, or `-- edges N SEED` for impassable edges that sweep
-//! does not draw (a step down under one track, a descent steeper than the limit, a
+//! does not draw (a step down under one side, a descent steeper than the limit, a
 //! block in a track, ditches, a too-steep ramp met obliquely), also on random rigs,
 //! where any verdict but go passes (a ditch whose floor the camera cannot see is
 //! unknown ground); `-- oblique N SEED`, climbable ramps up and down whose toe line
 //! runs at 20-60° to the axle, on random rigs, judged go or not. `ONLY=3,7` checks
 //! just those scenes of the sweep. The last line counts the failures and, of them,
-//! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain (`N.json`, for `cells`) and configuration
-//! (`N.toml`, for `cells`' `CONFIG` and `rover-terrain inspect --config`) there.
+//! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain
+//! (`N.json`, for `cells`) and configuration (`N.toml`, for `cells`' `CONFIG` and
+//! `rover-terrain inspect --config`) there.
 
 use rand::SeedableRng;
 use rover_terrain::sim::{self, families, random, KinectNoise};

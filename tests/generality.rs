@@ -570,7 +570,7 @@ fn random_scene_families_on_random_rigs_never_give_a_false_go() {
 
 #[test]
 fn impassable_edges_the_hazard_sweep_does_not_draw_are_never_go_on_random_rigs() {
-    // A step down under one track, a descent steeper than the limit, a block in a
+    // A step down under one side, a descent steeper than the limit, a block in a
     // track, a ditch across the corridor or under one track, a too-steep ramp met
     // obliquely (`sim::random::edge_scene_within`, two of each), where a random rig
     // sees both tracks; clean and noisy.

@@ -159,11 +159,13 @@ pub fn hazard_scene_within<R: Rng>(
 
 /// An impassable edge scene that [`hazard_scene_within`] does not draw, of family
 /// `i % 6`, its edge at a random distance in `at`, metres: a step down of 16-50 cm
-/// under one track only; a descent steeper than the slope limit (31.5-45°, full width
-/// or one track); a block of 13-30 cm standing in a track; a ditch 15-60 cm deep and
-/// 0.3-0.6 m long across the corridor; the same ditch under one track; a ramp steeper
-/// than the limit (31.5-40°) met obliquely (its toe line at 20-60° to the axle, full
-/// width or one track: along the strips it may climb under the limit). Every one is a
+/// under one side only (the half of the corridor left or right of its centre line,
+/// [`Extent::Left`] or [`Extent::Right`]); a descent steeper than the slope limit
+/// (31.5-45°, full width or one side); a block of 13-30 cm standing in a track; a
+/// ditch 15-60 cm deep and 0.3-0.6 m long across the corridor; the same ditch, 0.5 m
+/// wide, under one track; a ramp steeper than the limit (31.5-40°) met obliquely (its
+/// toe line at 20-60° to the axle, full width or one side: along the strips it may
+/// climb under the limit). Every one is a
 /// stop (its kind depends on how the rig sees it, so none is named): a wheel drops
 /// into a ditch longer than its diameter, and the rover descends no steeper than it
 /// climbs.
