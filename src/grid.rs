@@ -134,11 +134,13 @@ pub struct Cell {
     /// Mean height of the points within [`SURFACE_BAND`] voxels of `top`: the upper
     /// surface of the cell, without the points of a face below it, metres. Equal to
     /// `z` when the cell's points span no more than that band; `foot` when the band
-    /// holds less than [`SURFACE_MIN_SHARE`] of the points.
+    /// holds less than [`SURFACE_MIN_SHARE`] of the points. Stray points (voxels
+    /// under [`TOP_MIN_POINTS`]) above `top` take no part.
     pub crest: f32,
     /// Mean height of the points within [`SURFACE_BAND`] voxels of `low`: the lower
     /// surface of the cell, without the points of a face above it, metres; `crest`
-    /// when the band holds less than [`SURFACE_MIN_SHARE`] of the points.
+    /// when the band holds less than [`SURFACE_MIN_SHARE`] of the points. Stray
+    /// points below `low` take no part.
     pub foot: f32,
     /// Mean (x, y) of the points `crest` is the mean height of, metres. A face along
     /// a strip hugs one side of its cells; a face across it, their far or near part.
@@ -309,6 +311,9 @@ pub struct VoxelGrid {
     cells: Vec<Cell>,
     touched_cells: Vec<u32>,
     surface_n: Vec<[f32; 2]>,
+    /// Per cell: whether a voxel had [`TOP_MIN_POINTS`] points (its top and low are
+    /// voxels', not the mean's).
+    top_from_voxels: Vec<bool>,
     cut: Vec<bool>,
     touched_cut: Vec<u32>,
     row: RowBuffers,
@@ -328,6 +333,7 @@ impl VoxelGrid {
             cells: vec![Cell::EMPTY; spec.cell_count()],
             touched_cells: Vec::with_capacity(spec.cell_count()),
             surface_n: vec![[0.0; 2]; spec.cell_count()],
+            top_from_voxels: vec![false; spec.cell_count()],
             cut: vec![false; spec.cell_count()],
             touched_cut: Vec::with_capacity(spec.cell_count()),
             row: RowBuffers::default(),
@@ -499,6 +505,7 @@ impl VoxelGrid {
             cell.x /= n;
             cell.y /= n;
             cell.z /= n;
+            self.top_from_voxels[c as usize] = cell.top != f32::NEG_INFINITY;
             if cell.top == f32::NEG_INFINITY {
                 cell.top = cell.z;
                 cell.low = cell.z;
@@ -515,6 +522,15 @@ impl VoxelGrid {
             let cell = &mut self.cells[c];
             let w = &mut self.surface_n[c];
             let n = v.count as f32;
+            // A stray point above the top or below the low (a voxel too sparse to
+            // count for them) joins neither surface: one point off a face beside the
+            // cell must not lift its crest or lower its foot.
+            let stray = self.top_from_voxels[c]
+                && v.count < TOP_MIN_POINTS
+                && (v.z > cell.top || v.z < cell.low);
+            if stray {
+                continue;
+            }
             if v.z >= cell.top - band {
                 cell.crest += v.z * n;
                 cell.crest_xy[0] += v.x * n;
@@ -595,5 +611,58 @@ mod tests {
         g.emit();
         assert!(g.voxels().is_empty());
         assert!(g.cells().iter().all(|c| c.n == 0));
+    }
+
+    #[test]
+    fn a_stray_point_above_a_cells_top_lifts_neither_surface() {
+        // Two points on ground 0.3 m down, one stray point at z = 0 (off a face
+        // beside the cell) in the same cell: the stray is too sparse for the top, so
+        // it must not lift the crest either (it did: the crest was their mean).
+        let c = Config::default();
+        let p = Projector::new(&c, 640, 480);
+        let spec = GridSpec::from_config(&c);
+        let mut g = VoxelGrid::new(spec, 640 * 480);
+        let o = p.origin();
+        let origin = nalgebra::Vector3::new(f64::from(o[0]), f64::from(o[1]), f64::from(o[2]));
+        // Optical depth (mm) of pixel (u, v) where its ray meets height z.
+        let depth_at = |u: usize, v: usize, z: f64| {
+            let r = p.ray(u, v);
+            let d = (z - origin.z) / r.z;
+            (d * 1000.0).round() as u16
+        };
+        let point = |u: usize, v: usize, mm: u16| origin + p.ray(u, v) * (f64::from(mm) / 1000.0);
+        let mut depth = vec![0u16; 640 * 480];
+        let (u0, v0) = (300, 300); // off the centre line, a cell edge
+        let low = [(u0, v0), (u0 + 1, v0)];
+        for &(u, v) in &low {
+            depth[v * 640 + u] = depth_at(u, v, -0.3);
+        }
+        let at = point(u0, v0, depth[v0 * 640 + u0]);
+        let target = spec.cell_at(at.x as f32, at.y as f32).unwrap();
+        let stray = (0..480)
+            .flat_map(|v| (0..640).map(move |u| (u, v)))
+            .find(|&(u, v)| {
+                let q = point(u, v, depth_at(u, v, 0.0));
+                // Clear of the cell's edges by a centimetre.
+                [(-0.01, -0.01), (0.01, 0.01), (-0.01, 0.01), (0.01, -0.01)]
+                    .iter()
+                    .all(|(dx, dy)| {
+                        spec.cell_at((q.x + dx) as f32, (q.y + dy) as f32) == Some(target)
+                    })
+            })
+            .expect("a pixel sees the cell's ground at z = 0");
+        depth[stray.1 * 640 + stray.0] = depth_at(stray.0, stray.1, 0.0);
+        g.bin(&p, &depth, 400, 4500);
+        g.emit();
+        let cell = g.cells()[spec.cell(target.0, target.1)];
+        assert_eq!(cell.n, 3);
+        assert!((cell.z + 0.2).abs() < 0.01, "mean {}", cell.z);
+        for (name, z) in [
+            ("top", cell.top),
+            ("crest", cell.crest),
+            ("foot", cell.foot),
+        ] {
+            assert!((z + 0.3).abs() < 0.01, "{name} {z}");
+        }
     }
 }
