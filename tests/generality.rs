@@ -1381,3 +1381,39 @@ fn a_steep_face_met_obliquely_stops_where_its_toe_line_meets_each_track() {
         assert_go(&v, 7, toe, 20.0, Some(alpha));
     }
 }
+
+#[test]
+fn a_descent_whose_toe_is_below_the_image_is_go_and_a_drop_there_is_not() {
+    // A high camera (1.14 m, pitched 26°, 320×240) sees flat ground from 1.2 m. A
+    // descent whose toe lies nearer drops the ground there under the image's bottom
+    // edge: its first rows see the descent farther out, and the flat ground's
+    // nearest cells are not seen. That is the descent's own blind zone, not unknown
+    // ground; a drop there, with level ground below it, stays unknown.
+    use rover_terrain::sim::families::footprint;
+    let mut c = mounted([0.134, -0.097, 1.145], [3.95, 25.74, 0.84]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.333;
+    let (near, _) = footprint(&c);
+    assert!((1.1..1.3).contains(&near), "seen from {near} m");
+    for (gradient, alpha) in [(-15.6, 50.2), (-15.0, 0.0), (-18.0, -35.0), (-10.0, 30.0)] {
+        for toe in [near - 0.3, near - 0.1] {
+            let scene = vec![Element::ramp(toe, 0.0, gradient, alpha, Extent::Full)];
+            for v in [analyse(scene.clone(), &c), analyse_noisy(scene, &c, 181)] {
+                assert_eq!(
+                    v.decision,
+                    Decision::Go,
+                    "{gradient}° at {alpha}° from {toe} m: {:?}",
+                    v.hazards
+                );
+            }
+        }
+    }
+    for depth_m in [0.15, 0.3] {
+        for x_m in [near - 0.3, near - 0.1] {
+            let scene = vec![Element::DropOff { x_m, depth_m }];
+            for v in [analyse(scene.clone(), &c), analyse_noisy(scene, &c, 182)] {
+                assert_ne!(v.decision, Decision::Go, "{depth_m} m down at {x_m} m");
+            }
+        }
+    }
+}

@@ -991,7 +991,14 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 if let Some((start, len)) = run.take() {
                     if len >= min_run {
                         let after = c.filter(|_| seen_here).map(ground);
-                        let kind = judge_gap(f, iy, start, ix, before, after, r, tan_max);
+                        let kind = if before.last().is_none()
+                            && seen_here
+                            && below_view(f, iy, start, ix, ground, tan_max)
+                        {
+                            None
+                        } else {
+                            judge_gap(f, iy, start, ix, before, after, r, tan_max)
+                        };
                         if let Some(kind) = kind {
                             verdict.add_hazard(Hazard {
                                 kind,
@@ -1022,6 +1029,48 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             });
         }
     }
+}
+
+/// Whether the unseen run `start..end` at the near end of strip `iy` (no ground seen
+/// before it) is ground lowered out of the image: the ground seen from `end` on lies
+/// on one line over [`BLIND_FIT_M`] (within rough ground's spread,
+/// [`ROUGH_LINE_RMS_M`]), descending at a passable slope, which continued back toward
+/// the rover meets its ground (z = 0) at or ahead of the origin, and at that height
+/// (never above z = 0) no cell of the run falls whole inside the image. The camera
+/// sees flat ground there; a descent whose toe lies below the image drops that
+/// ground under the image's bottom edge, so its first rows see the descent farther
+/// out. [`blind_rise`] judges whether such a change below the image is a ramp.
+/// Ground that stays lower than a ramp from the rover's ground would (a drop hidden
+/// below the image, ground level beyond it) is not this: its run stays a gap.
+fn below_view(
+    f: &Frame,
+    iy: usize,
+    start: usize,
+    end: usize,
+    ground: impl Fn(usize) -> (f32, f32),
+    tan_max: f32,
+) -> bool {
+    let s = f.spec;
+    let x0 = s.x_centre(end);
+    let near = || {
+        (end..s.nx)
+            .take_while(|&ix| f.seen[s.cell(ix, iy)] && s.x_centre(ix) <= x0 + BLIND_FIT_M)
+            .map(|ix| ground(s.cell(ix, iy)))
+    };
+    let Some((line, rms)) = line_fit(near()) else {
+        return false;
+    };
+    let (k, z0) = (line.a as f32, line.z(f64::from(x0), 0.0) as f32);
+    let toe_ahead = rms as f32 <= ROUGH_LINE_RMS_M
+        && z0 < 0.0
+        && k < 0.0
+        && k > -tan_max
+        && x0 - z0 / k >= s.origin[0];
+    toe_ahead
+        && (start..end).all(|j| {
+            let z = (z0 + k * (s.x_centre(j) - x0)).min(0.0);
+            !super::visibility::in_view(s, f.projector, f.cfg, j, iy, z)
+        })
 }
 
 /// The last few seen cells of a strip, oldest first (a fixed ring: no allocation).

@@ -4,6 +4,7 @@
 //! so analysing a frame allocates nothing.
 
 mod crossing;
+pub use crossing::GRAZING_DEG;
 mod feature;
 pub mod plane;
 mod tilt;
@@ -81,6 +82,7 @@ struct Fixed {
     /// The camera's vertical focal length, pixels.
     fy_px: f32,
     paths: visibility::ShadowPaths,
+    projector: Projector,
 }
 
 /// What the camera saw of each cell this frame, and what it could not have seen
@@ -127,6 +129,8 @@ pub(crate) struct Frame<'a> {
     pub camera: [f32; 3],
     /// The camera's vertical focal length, pixels: its rows per radian.
     pub fy_px: f32,
+    /// The camera as mounted: where ground at another height falls in its image.
+    pub projector: &'a Projector,
 }
 
 impl<'a> Frame<'a> {
@@ -144,6 +148,7 @@ impl<'a> Frame<'a> {
             cfg: &fixed.cfg,
             camera: fixed.camera,
             fy_px: fixed.fy_px,
+            projector: &fixed.projector,
         }
     }
 
@@ -197,6 +202,7 @@ impl Analyzer {
                 camera: projector.origin(),
                 fy_px,
                 paths,
+                projector: projector.clone(),
             },
             view: View {
                 seen: vec![false; cells],

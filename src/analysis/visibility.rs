@@ -14,36 +14,44 @@ const RANGE_MARGIN_M: f64 = 0.1;
 /// Cells whose whole ground square (z = 0) falls inside the image and the range
 /// limits: on flat ground the camera must have points there.
 pub fn expected_cells(spec: &GridSpec, projector: &Projector, config: &Config) -> Vec<bool> {
+    let mut out = vec![false; spec.cell_count()];
+    for ix in 0..spec.nx {
+        for iy in 0..spec.ny {
+            out[spec.cell(ix, iy)] = in_view(spec, projector, config, ix, iy, 0.0);
+        }
+    }
+    out
+}
+
+/// Whether cell (ix, iy)'s whole square, at height `z` (metres, rover frame), falls
+/// inside the image (half a pixel clear of its edges) and the range limits (kept
+/// [`RANGE_MARGIN_M`] clear).
+pub fn in_view(
+    spec: &GridSpec,
+    projector: &Projector,
+    config: &Config,
+    ix: usize,
+    iy: usize,
+    z: f32,
+) -> bool {
     let (w, h) = (projector.width() as f64, projector.height() as f64);
     let (near, far) = (
         config.camera.min_range_m + RANGE_MARGIN_M,
         config.camera.max_range_m - RANGE_MARGIN_M,
     );
     let vs = f64::from(spec.voxel_m);
-    let mut out = vec![false; spec.cell_count()];
-    for ix in 0..spec.nx {
-        for iy in 0..spec.ny {
-            let x0 = f64::from(spec.origin[0]) + ix as f64 * vs;
-            let y0 = f64::from(spec.origin[1]) + iy as f64 * vs;
-            let visible = [(0.0, 0.0), (vs, 0.0), (0.0, vs), (vs, vs)]
-                .iter()
-                .all(
-                    |(dx, dy)| match projector.project(Vector3::new(x0 + dx, y0 + dy, 0.0)) {
-                        Some((u, v, z)) => {
-                            u >= 0.5
-                                && v >= 0.5
-                                && u <= w - 1.5
-                                && v <= h - 1.5
-                                && z >= near
-                                && z <= far
-                        }
-                        None => false,
-                    },
-                );
-            out[spec.cell(ix, iy)] = visible;
-        }
-    }
-    out
+    let x0 = f64::from(spec.origin[0]) + ix as f64 * vs;
+    let y0 = f64::from(spec.origin[1]) + iy as f64 * vs;
+    [(0.0, 0.0), (vs, 0.0), (0.0, vs), (vs, vs)]
+        .iter()
+        .all(
+            |(dx, dy)| match projector.project(Vector3::new(x0 + dx, y0 + dy, f64::from(z))) {
+                Some((u, v, d)) => {
+                    u >= 0.5 && v >= 0.5 && u <= w - 1.5 && v <= h - 1.5 && d >= near && d <= far
+                }
+                None => false,
+            },
+        )
 }
 
 /// Whether the camera's line of sight to the centre of cell (ix, iy) at height
