@@ -206,6 +206,64 @@ pub fn footprint(config: &Config) -> (f64, f64) {
     }
 }
 
+/// The least angle, degrees, at which the camera's lines of sight meet `terrain`'s
+/// surface under the wheel tracks (|y| from the belly's edge to the track's outer
+/// edge, 1 cm clear of both) from the rover's front to the corridor's end, over the
+/// points that fall inside the image and the range limits. Negative where the surface
+/// faces away from the camera: a descent steeper than the line of sight to it, which
+/// no camera sees however fine its pixels. A hand calculation on the drawn terrain
+/// (the surface's normal from its height, the camera's place from the mount), so a
+/// sweep can tell a descent its camera could not see from one the analysis missed;
+/// it ignores what else stands in the way (a track's side walls), so it never
+/// excuses more than the surface's own slope hides.
+pub fn least_incidence_deg(terrain: &Terrain, config: &Config) -> f64 {
+    use nalgebra::Vector3;
+    let p = crate::projection::Projector::new(
+        config,
+        config.camera.width as usize,
+        config.camera.height as usize,
+    );
+    let o = p.origin();
+    let cam = Vector3::new(f64::from(o[0]), f64::from(o[1]), f64::from(o[2]));
+    let (w, h) = (p.width() as f64, p.height() as f64);
+    let (inner, outer) = (
+        config.rover.belly_half_width_m + 0.01,
+        config.rover.track_outer_m - 0.01,
+    );
+    let field = terrain.field();
+    let eps = 1e-3;
+    let mut least = f64::INFINITY;
+    let steps_y = ((outer - inner) / 0.025).ceil() as usize;
+    let steps_x = (config.analysis.corridor_length_m / 0.025).ceil() as usize;
+    for side in [1.0, -1.0] {
+        for j in 0..=steps_y {
+            let y = side * (inner + (outer - inner) * j as f64 / steps_y as f64);
+            for i in 0..=steps_x {
+                let x = i as f64 * 0.025;
+                let z = field.height(x, y);
+                let at = Vector3::new(x, y, z);
+                let inside = p.project(at).is_some_and(|(u, v, d)| {
+                    u >= 0.5
+                        && v >= 0.5
+                        && u <= w - 1.5
+                        && v <= h - 1.5
+                        && d >= config.camera.min_range_m
+                        && d <= config.camera.max_range_m
+                });
+                if !inside {
+                    continue;
+                }
+                let zx = (field.height(x + eps, y) - field.height(x - eps, y)) / (2.0 * eps);
+                let zy = (field.height(x, y + eps) - field.height(x, y - eps)) / (2.0 * eps);
+                let normal = Vector3::new(-zx, -zy, 1.0).normalize();
+                let to_cam = (cam - at).normalize();
+                least = least.min(normal.dot(&to_cam).asin().to_degrees());
+            }
+        }
+    }
+    least
+}
+
 /// Where a random rig's one frame can judge an edge on both tracks, metres: from the
 /// [`footprint`]'s near end (not nearer than 0.9 m) to 0.15 m before its far end (not
 /// past 2.4 m). A hazard past the view is not one frame's to judge; one below the
