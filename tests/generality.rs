@@ -1417,3 +1417,37 @@ fn a_descent_whose_toe_is_below_the_image_is_go_and_a_drop_there_is_not() {
         }
     }
 }
+
+#[test]
+fn a_descending_tracks_wall_top_in_its_edge_strip_makes_no_step_but_a_block_there_does() {
+    // An 11° descent under the left track only, met at 35°, seen by a Kinect v1 1.04 m
+    // high: far out, the edge strip beside the belly band gets a handful of points,
+    // and depth noise can make the wall's top and the belly's ground beside it (0 m)
+    // outnumber the track's floor (-0.19 m) in a cell: read as its ground, that was
+    // a 19 cm step (a noisy stop).
+    let mut c = mounted(
+        [0.171_390_6, -0.048_616_9, 1.038_389_3],
+        [5.336_988_2, 26.276_972_7, -9.853_577_2],
+    );
+    c.camera.min_range_m = 0.473_929;
+    let slot = Element::ramp(1.499_185, 0.45, -10.974_537, 34.944_877, LEFT_TRACK);
+    for seed in [4152, 4153, 4154, 4155] {
+        let v = analyse_noisy(vec![slot.clone()], &c, seed);
+        assert_eq!(v.decision, Decision::Go, "seed {seed}: {:?}", v.hazards);
+    }
+    // A block on the descending floor against the wall, its top at the belly's level
+    // or above, is an obstacle the inner strips see too.
+    for (x_m, height_m) in [(2.3, 0.15), (2.6, 0.22)] {
+        let block = Element::Block {
+            x_m,
+            y_m: 0.3,
+            length_m: 0.2,
+            width_m: 0.2,
+            height_m,
+        };
+        let scene = vec![slot.clone(), block];
+        for v in [analyse(scene.clone(), &c), analyse_noisy(scene, &c, 4152)] {
+            assert_ne!(v.decision, Decision::Go, "{height_m} m at {x_m} m");
+        }
+    }
+}

@@ -69,20 +69,17 @@ pub fn steps_and_slopes(
                 } else {
                     // Of a cell's two surfaces, the one that continues the strip
                     // (its last height carried on at its slope, up to passable).
-                    let near = match last {
-                        [Some((x0, z0)), Some((x1, z1))] if x1 > x0 => {
-                            let k = ((z1 - z0) / (x1 - x0)).clamp(-tan_max, tan_max);
-                            z1 + k * (cell.x - x1)
-                        }
-                        [_, Some((_, z1))] => z1,
-                        _ => cell.foot,
-                    };
+                    let near = continued(last, cell.x, tan_max).unwrap_or(cell.foot);
                     if (cell.crest - near).abs() <= (cell.foot - near).abs() {
                         cell.crest
                     } else {
                         cell.foot
                     }
                 };
+                if !past && spilled(f, ix, iy, z, continued(last, cell.x, tan_max), r) {
+                    // The belly band's ground, not this strip's: leave the cell out.
+                    continue;
+                }
                 if !past {
                     surface[c] = z;
                 }
@@ -101,6 +98,57 @@ pub fn steps_and_slopes(
         }
     }
 }
+
+/// A strip's height carried on to `x` from its last two chosen cells (`last`, (x, z),
+/// oldest first) at their slope, up to passable; the last height with one cell;
+/// `None` with none.
+fn continued(last: [Option<(f32, f32)>; 2], x: f32, tan_max: f32) -> Option<f32> {
+    match last {
+        [Some((x0, z0)), Some((x1, z1))] if x1 > x0 => {
+            let k = ((z1 - z0) / (x1 - x0)).clamp(-tan_max, tan_max);
+            Some(z1 + k * (x - x1))
+        }
+        [_, Some((_, z1))] => Some(z1),
+        _ => None,
+    }
+}
+
+/// Whether track cell (`ix`, `iy`), its ground read as `z`, holds the belly band's
+/// ground spilled over the band edge rather than the strip's: the strip is the track's
+/// edge strip beside the belly band; `z` lies more than a wheel radius from the strip
+/// carried on (`near`) but within [`SPILL_M`] of the belly cell across the edge; and
+/// the next strip inward sees nothing at that level there (its cell, when seen, is
+/// nearer the strip carried on). A track lower than the belly band (a descent under
+/// one track) leaves a wall along the edge, whose top and the belly's ground beside
+/// it, few points far out and scattered by depth noise, can outnumber the track's own
+/// floor in the edge cell; read as its ground they make a step. A rise across the
+/// track (a ditch's far wall, a step) lifts the inner strips too.
+fn spilled(f: &Frame, ix: usize, iy: usize, z: f32, near: Option<f32>, r: f32) -> bool {
+    let s = f.spec;
+    let Some(near) = near else {
+        return false;
+    };
+    let (across, inward) = match f.region[iy] {
+        Region::Left if iy >= 1 && f.region[iy - 1] == Region::Belly => (iy - 1, iy + 1),
+        Region::Right if iy + 1 < s.ny && f.region[iy + 1] == Region::Belly => {
+            (iy + 1, iy.wrapping_sub(1))
+        }
+        _ => return false,
+    };
+    let belly = s.cell(ix, across);
+    if (z - near).abs() <= r || !f.seen[belly] || (z - f.cells[belly].z).abs() > SPILL_M {
+        return false;
+    }
+    let inner_level = (inward < s.ny && f.region[inward] == f.region[iy])
+        .then(|| s.cell(ix, inward))
+        .filter(|&c| f.seen[c])
+        .map(|c| f.cells[c].z);
+    inner_level.is_none_or(|zi| (zi - near).abs() < (zi - z).abs())
+}
+
+/// How close an edge cell's ground must come to the belly band's beside it to be that
+/// ground spilled over ([`spilled`]), metres: rough ground's peak to peak.
+const SPILL_M: f32 = 0.05;
 
 /// Obstacles whose top the camera does not see, standing in a track.
 ///
