@@ -67,7 +67,10 @@ pub struct Feature {
     /// 7 diagonal uphill full width; 8 downhill; 9/10 downhill left/right.
     pub workcase: u8,
     /// Forward distance to the toe line, metres (at the centre line, or at the centre
-    /// of the affected track for one-sided cases).
+    /// of the affected track for one-sided cases). A face met almost side-on (a side
+    /// slope), whose toe line meets that line behind the rover or past the corridor,
+    /// takes the toe line's nearest point within the affected tracks instead, never
+    /// under 0 (0: a track is on the face already).
     pub distance_m: Option<f32>,
     /// Steepest slope of the face across the toe line, degrees, negative downhill.
     pub gradient_deg: Option<f32>,

@@ -1451,3 +1451,28 @@ fn a_descending_tracks_wall_top_in_its_edge_strip_makes_no_step_but_a_block_ther
         }
     }
 }
+
+#[test]
+fn a_face_met_side_on_reports_where_its_toe_line_meets_the_tracks() {
+    // A side slope: the toe line runs (almost) along the direction of travel, so it
+    // meets the reference line far behind the rover, or never (it was reported as
+    // -202959 m at 90°, -0.68 m at 75°). Its distance is where the toe line is
+    // nearest within the tracks, 0 when a track is on the face already.
+    for alpha in [90.0, 89.9, 75.0, -80.0] {
+        for gradient in [8.0, -10.0] {
+            let v = analyse(
+                vec![Element::ramp(1.0, 0.0, gradient, alpha, Extent::Full)],
+                &Config::default(),
+            );
+            assert_eq!(
+                v.decision,
+                Decision::Go,
+                "{gradient}° at {alpha}°: {:?}",
+                v.hazards
+            );
+            let f = v.feature.unwrap();
+            assert_eq!(f.distance_m, Some(0.0), "{gradient}° at {alpha}°: {f:?}");
+            assert!(!f.toe_seen);
+        }
+    }
+}

@@ -335,7 +335,19 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
         return Feature::FLAT;
     };
     let (affected, plane) = one_face_or_nearer(f, onset, use_cell, affected);
-    let (distance, gradient, alpha) = measures(f, onset, plane, affected);
+    let (at_ref, gradient, alpha, nearest) = measures(f, onset, plane, affected);
+    // A face met almost side-on (a side slope) has its toe line meet the reference
+    // line behind the rover, or far past the corridor, or never: its distance is then
+    // where the toe line is nearest within the affected tracks, and 0 for a track
+    // already on the face.
+    let length = f.cfg.analysis.corridor_length_m;
+    let distance = if (0.0..=length).contains(&at_ref) {
+        at_ref
+    } else if nearest.is_finite() {
+        nearest.clamp(0.0, length)
+    } else {
+        0.0
+    };
     let diagonal = alpha.abs() >= f.cfg.analysis.diagonal_min_deg;
     let workcase = workcase(affected, diagonal);
     let vs = f64::from(f.spec.voxel_m);
@@ -466,20 +478,27 @@ fn one_face_or_nearer(
     (a, Some(both))
 }
 
-/// Step 4: (distance, gradient, alpha) of the face: from the fitted plane when it
-/// is a slope the right way, else from the onsets (a low step).
+/// Step 4: (distance, gradient, alpha) of the face, and the toe line's nearest
+/// distance within the affected tracks (at one of their edges), metres: from the
+/// fitted plane when it is a slope the right way, else from the onsets (a low step).
 fn measures(
     f: &Frame,
     onset: &[Option<Onset>],
     plane: Option<Plane>,
     a: Affected,
-) -> (f64, f64, f64) {
+) -> (f64, f64, f64, f64) {
     let tc = f.cfg.rover.track_centre_m();
     let y_ref = match (a.left, a.right) {
         (true, true) => 0.0,
         (true, false) => tc,
         _ => -tc,
     };
+    let (inner, outer) = (f.cfg.rover.belly_half_width_m, f.cfg.rover.track_outer_m);
+    let edges = [(a.left, 1.0), (a.right, -1.0)]
+        .into_iter()
+        .filter(|&(on, _)| on)
+        .flat_map(|(_, side)| [side * inner, side * outer]);
+    let nearest = |toe: &dyn Fn(f64) -> f64| edges.clone().map(toe).fold(f64::INFINITY, f64::min);
     let sign = if a.dir == Dir::Up { 1.0 } else { -1.0 };
     let sloped = plane.filter(|p| p.a * sign > 0.0 && p.gradient_deg() >= MIN_FACE_DEG);
     match sloped {
@@ -487,10 +506,17 @@ fn measures(
             p.toe_x(y_ref),
             sign * p.gradient_deg(),
             (p.b / p.a).atan().to_degrees(),
+            nearest(&|y| p.toe_x(y)),
         ),
         None => {
             let (distance, alpha) = step_toe(f, onset, a, y_ref);
-            (distance, sign * 90.0, alpha)
+            let q = -alpha.to_radians().tan();
+            (
+                distance,
+                sign * 90.0,
+                alpha,
+                nearest(&|y| distance + q * (y - y_ref)),
+            )
         }
     }
 }
