@@ -9,7 +9,10 @@
 //! block in a track, ditches, a too-steep ramp met obliquely), also on random rigs,
 //! where any verdict but go passes (a ditch whose floor the camera cannot see is
 //! unknown ground); `-- oblique N SEED`, climbable ramps up and down whose toe line
-//! runs at 20-60° to the axle, on random rigs, judged go or not. `ONLY=3,7` checks
+//! runs at 20-60° to the axle, on random rigs, judged go or not, except where the
+//! camera meets the surface in the tracks at under `GRAZING_DEG` (a descent as steep
+//! as the line of sight to it is not seen there): any verdict passes, and the last
+//! lines count those frames. `ONLY=3,7` checks
 //! just those scenes of the sweep. The last line counts the failures and, of them,
 //! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain
 //! (`N.json`, for `cells`) and configuration (`N.toml`, for `cells`' `CONFIG` and

@@ -657,3 +657,39 @@ fn rock_on_ramp<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
         want,
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A camera 1.2 m up at the origin, pitched 30°, that sees the whole corridor.
+    fn overhead() -> Config {
+        let mut c = Config::default();
+        (c.mount.x_m, c.mount.y_m, c.mount.z_m) = (0.0, 0.0, 1.2);
+        (c.mount.roll_deg, c.mount.pitch_deg, c.mount.yaw_deg) = (0.0, 30.0, 0.0);
+        c
+    }
+
+    #[test]
+    fn the_least_incidence_is_the_far_corners_by_hand() {
+        // The lines of sight meet the ground most obliquely at the corridor's far
+        // corners, (3.0, ±0.69) (1 cm inside the track's outer edge).
+        let c = overhead();
+        let corner = |z: f64| (3.0f64.powi(2) + 0.69f64.powi(2) + (1.2 - z).powi(2)).sqrt();
+        let flat = (1.2 / corner(0.0)).asin().to_degrees();
+        let got = least_incidence_deg(&Terrain::flat(), &c);
+        assert!((got - flat).abs() < 0.01, "{got} vs {flat}");
+        // A 10° descent from 1 m: the normal leans forward by 10°, the corner is
+        // 2·tan 10° lower.
+        let t = 10f64.to_radians().tan();
+        let z = -2.0 * t;
+        let normal_dot = (-3.0 * t + (1.2 - z)) / (1.0 + t * t).sqrt();
+        let down = (normal_dot / corner(z)).asin().to_degrees();
+        let descent = Terrain::new(vec![Element::ramp(1.0, 0.0, -10.0, 0.0, Extent::Full)]);
+        let got = least_incidence_deg(&descent, &c);
+        assert!((got - down).abs() < 0.01, "{got} vs {down}");
+        // Steeper than the lines of sight: the surface faces away.
+        let cliff = Terrain::new(vec![Element::ramp(1.0, 0.0, -60.0, 0.0, Extent::Full)]);
+        assert!(least_incidence_deg(&cliff, &c) < 0.0);
+    }
+}
