@@ -93,6 +93,13 @@ impl Projector {
         self.height
     }
 
+    /// Whether continuous image position (u, v), pixels (as [`Projector::project`]
+    /// gives it), lies inside the image, half a pixel clear of its edges.
+    pub fn in_image(&self, u: f64, v: f64) -> bool {
+        let (w, h) = (self.width as f64, self.height as f64);
+        u >= 0.5 && v >= 0.5 && u <= w - 1.5 && v <= h - 1.5
+    }
+
     /// Per-column ray parts (`kx[u]·M₀`), rover frame.
     pub fn col_table(&self) -> &[[f32; 3]] {
         &self.col

@@ -34,7 +34,6 @@ pub fn in_view(
     iy: usize,
     z: f32,
 ) -> bool {
-    let (w, h) = (projector.width() as f64, projector.height() as f64);
     let (near, far) = (
         config.camera.min_range_m + RANGE_MARGIN_M,
         config.camera.max_range_m - RANGE_MARGIN_M,
@@ -44,14 +43,11 @@ pub fn in_view(
     let y0 = f64::from(spec.origin[1]) + iy as f64 * vs;
     [(0.0, 0.0), (vs, 0.0), (0.0, vs), (vs, vs)]
         .iter()
-        .all(
-            |(dx, dy)| match projector.project(Vector3::new(x0 + dx, y0 + dy, f64::from(z))) {
-                Some((u, v, d)) => {
-                    u >= 0.5 && v >= 0.5 && u <= w - 1.5 && v <= h - 1.5 && d >= near && d <= far
-                }
-                None => false,
-            },
-        )
+        .all(|(dx, dy)| {
+            projector
+                .project(Vector3::new(x0 + dx, y0 + dy, f64::from(z)))
+                .is_some_and(|(u, v, d)| projector.in_image(u, v) && d >= near && d <= far)
+        })
 }
 
 /// Whether the camera's line of sight to the centre of cell (ix, iy) at height

@@ -180,21 +180,14 @@ pub fn footprint(config: &Config) -> (f64, f64) {
         config.camera.height as usize,
     );
     let tc = config.rover.track_centre_m();
-    let (w, h) = (p.width() as f64, p.height() as f64);
     let visible = |x: f64| {
-        [tc, -tc]
-            .iter()
-            .all(|&y| match p.project(Vector3::new(x, y, 0.0)) {
-                Some((u, v, z)) => {
-                    u >= 0.5
-                        && v >= 0.5
-                        && u <= w - 1.5
-                        && v <= h - 1.5
-                        && z >= config.camera.min_range_m + 0.05
-                        && z <= config.camera.max_range_m - 0.05
-                }
-                None => false,
+        [tc, -tc].iter().all(|&y| {
+            p.project(Vector3::new(x, y, 0.0)).is_some_and(|(u, v, z)| {
+                p.in_image(u, v)
+                    && z >= config.camera.min_range_m + 0.05
+                    && z <= config.camera.max_range_m - 0.05
             })
+        })
     };
     let xs: Vec<f64> = (0..=600)
         .map(|i| i as f64 * 0.01)
@@ -225,7 +218,6 @@ pub fn least_incidence_deg(terrain: &Terrain, config: &Config) -> f64 {
     );
     let o = p.origin();
     let cam = Vector3::new(f64::from(o[0]), f64::from(o[1]), f64::from(o[2]));
-    let (w, h) = (p.width() as f64, p.height() as f64);
     let (inner, outer) = (
         config.rover.belly_half_width_m + 0.01,
         config.rover.track_outer_m - 0.01,
@@ -243,10 +235,7 @@ pub fn least_incidence_deg(terrain: &Terrain, config: &Config) -> f64 {
                 let z = field.height(x, y);
                 let at = Vector3::new(x, y, z);
                 let inside = p.project(at).is_some_and(|(u, v, d)| {
-                    u >= 0.5
-                        && v >= 0.5
-                        && u <= w - 1.5
-                        && v <= h - 1.5
+                    p.in_image(u, v)
                         && d >= config.camera.min_range_m
                         && d <= config.camera.max_range_m
                 });
