@@ -311,9 +311,6 @@ pub struct VoxelGrid {
     cells: Vec<Cell>,
     touched_cells: Vec<u32>,
     surface_n: Vec<[f32; 2]>,
-    /// Per cell: whether a voxel had [`TOP_MIN_POINTS`] points (its top and low are
-    /// voxels', not the mean's).
-    top_from_voxels: Vec<bool>,
     cut: Vec<bool>,
     touched_cut: Vec<u32>,
     row: RowBuffers,
@@ -333,7 +330,6 @@ impl VoxelGrid {
             cells: vec![Cell::EMPTY; spec.cell_count()],
             touched_cells: Vec::with_capacity(spec.cell_count()),
             surface_n: vec![[0.0; 2]; spec.cell_count()],
-            top_from_voxels: vec![false; spec.cell_count()],
             cut: vec![false; spec.cell_count()],
             touched_cut: Vec::with_capacity(spec.cell_count()),
             row: RowBuffers::default(),
@@ -505,14 +501,10 @@ impl VoxelGrid {
             cell.x /= n;
             cell.y /= n;
             cell.z /= n;
-            self.top_from_voxels[c as usize] = cell.top != f32::NEG_INFINITY;
-            if cell.top == f32::NEG_INFINITY {
-                cell.top = cell.z;
-                cell.low = cell.z;
-            }
         }
         // The upper and lower surfaces: a second pass over the voxels, now that each
-        // cell's top and low are known (point counts of the two bands in scratch).
+        // cell's top and low are known (point counts of the two bands in scratch). A
+        // cell with no voxel of TOP_MIN_POINTS has none yet: its mean stands for both.
         let band = SURFACE_BAND * vs;
         for &c in &self.touched_cells {
             self.surface_n[c as usize] = [0.0; 2];
@@ -522,22 +514,26 @@ impl VoxelGrid {
             let cell = &mut self.cells[c];
             let w = &mut self.surface_n[c];
             let n = v.count as f32;
+            let from_voxels = cell.top != f32::NEG_INFINITY;
+            let (top, low) = if from_voxels {
+                (cell.top, cell.low)
+            } else {
+                (cell.z, cell.z)
+            };
             // A stray point above the top or below the low (a voxel too sparse to
             // count for them) joins neither surface: one point off a face beside the
             // cell must not lift its crest or lower its foot.
-            let stray = self.top_from_voxels[c]
-                && v.count < TOP_MIN_POINTS
-                && (v.z > cell.top || v.z < cell.low);
+            let stray = from_voxels && v.count < TOP_MIN_POINTS && (v.z > top || v.z < low);
             if stray {
                 continue;
             }
-            if v.z >= cell.top - band {
+            if v.z >= top - band {
                 cell.crest += v.z * n;
                 cell.crest_xy[0] += v.x * n;
                 cell.crest_xy[1] += v.y * n;
                 w[0] += n;
             }
-            if v.z <= cell.low + band {
+            if v.z <= low + band {
                 cell.foot += v.z * n;
                 cell.foot_xy[0] += v.x * n;
                 cell.foot_xy[1] += v.y * n;
@@ -546,6 +542,10 @@ impl VoxelGrid {
         }
         for &c in &self.touched_cells {
             let cell = &mut self.cells[c as usize];
+            if cell.top == f32::NEG_INFINITY {
+                cell.top = cell.z;
+                cell.low = cell.z;
+            }
             let [wc, wf] = self.surface_n[c as usize];
             // A band with few of the cell's points is a face's fringe, not a surface.
             let least = SURFACE_MIN_SHARE * cell.n as f32;
