@@ -55,6 +55,7 @@ pub fn steps_and_slopes(
                 }
                 let cell = &f.cells[c];
                 let past = f.past[c];
+                let carried = continued(last, cell.x, tan_max);
                 let z = if past {
                     cell.top.max(cell.z)
                 } else if let Some(z) = ground_beside_face(cell, f.spec.y_centre(iy), vs) {
@@ -69,14 +70,14 @@ pub fn steps_and_slopes(
                 } else {
                     // Of a cell's two surfaces, the one that continues the strip
                     // (its last height carried on at its slope, up to passable).
-                    let near = continued(last, cell.x, tan_max).unwrap_or(cell.foot);
+                    let near = carried.unwrap_or(cell.foot);
                     if (cell.crest - near).abs() <= (cell.foot - near).abs() {
                         cell.crest
                     } else {
                         cell.foot
                     }
                 };
-                if !past && spilled(f, ix, iy, z, continued(last, cell.x, tan_max), r) {
+                if !past && spilled(f, ix, iy, z, carried, r) {
                     // The belly band's ground, not this strip's: leave the cell out.
                     continue;
                 }
