@@ -19,8 +19,9 @@
 //! `rover-terrain inspect --config`) there.
 
 use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
 use rover_terrain::analysis::GRAZING_DEG;
-use rover_terrain::sim::{self, families, random, KinectNoise};
+use rover_terrain::sim::{self, families, random, Expectation, KinectNoise, Terrain, Tolerance};
 use rover_terrain::validate::{compare, CLEAN, NOISY};
 use rover_terrain::{Config, Decision, Pipeline};
 
@@ -29,53 +30,17 @@ fn main() {
     let mode = args.get(1).map_or("workcases", String::as_str);
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(80);
     let seed: u64 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(1);
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
     // ONLY=i,j,... renders just those scenes (the draws before them still happen).
     let only: Option<Vec<usize>> = std::env::var("ONLY")
         .ok()
         .map(|v| v.split(',').filter_map(|s| s.parse().ok()).collect());
     let random_rig = args.get(4).map(String::as_str) == Some("random");
+    // `families` mode: just this family (its index in `families::Family::ALL`).
+    let family = args.get(5).and_then(|s| s.parse::<usize>().ok());
     let (mut failures, mut total, mut false_go, mut excused) = (0, 0, 0, (0, 0));
     for i in 0..n {
-        let mut tol = (CLEAN, NOISY);
-        let (terrain, want, config) = match mode {
-            // On random rigs (`edges` and `oblique` always, `hazards` when asked), each
-            // scene where its rig sees both tracks.
-            "edges" | "oblique" | "hazards" if random_rig || mode != "hazards" => {
-                let rig = families::Rig::random(&mut rng);
-                let at = families::judged_span(&rig.config);
-                let (t, w) = match mode {
-                    "hazards" => random::hazard_scene_within(&mut rng, i, at),
-                    // Impassable edges the hazard sweep does not draw.
-                    "edges" => random::edge_scene_within(&mut rng, i, at),
-                    // Climbable ramps up and down met obliquely.
-                    _ => random::oblique_scene_within(&mut rng, at),
-                };
-                (t, w, rig.config)
-            }
-            "hazards" => {
-                let (t, w) = random::hazard_scene(&mut rng, i);
-                (t, w, Config::default())
-            }
-            "families" => {
-                let rig = if random_rig {
-                    families::Rig::random(&mut rng)
-                } else {
-                    families::Rig::default_rig()
-                };
-                let fam = match args.get(5).and_then(|s| s.parse::<usize>().ok()) {
-                    Some(k) => families::Family::ALL[k],
-                    None => families::Family::ALL[i % families::Family::ALL.len()],
-                };
-                let d = families::draw(&mut rng, fam, rig);
-                tol = d.tolerance;
-                (d.terrain, d.expect, d.rig.config)
-            }
-            _ => {
-                let (t, w) = random::workcase_scene(&mut rng, i);
-                (t, w, Config::default())
-            }
-        };
+        let (terrain, want, config, tol) = draw(&mut rng, mode, i, random_rig, family);
         if only.as_ref().is_some_and(|o| !o.contains(&i)) {
             continue;
         }
@@ -144,5 +109,54 @@ fn main() {
             "{} frames met a surface under {GRAZING_DEG}° (any verdict passes), {} of them not go",
             excused.0, excused.1
         );
+    }
+}
+
+/// Scene `i` of `mode`: its terrain, expectation, configuration and tolerances
+/// (clean, noisy).
+fn draw(
+    rng: &mut ChaCha8Rng,
+    mode: &str,
+    i: usize,
+    random_rig: bool,
+    family: Option<usize>,
+) -> (Terrain, Expectation, Config, (Tolerance, Tolerance)) {
+    let tol = (CLEAN, NOISY);
+    match mode {
+        // On random rigs (`edges` and `oblique` always, `hazards` when asked), each
+        // scene where its rig sees both tracks.
+        "edges" | "oblique" | "hazards" if random_rig || mode != "hazards" => {
+            let rig = families::Rig::random(rng);
+            let at = families::judged_span(&rig.config);
+            let (t, w) = match mode {
+                "hazards" => random::hazard_scene_within(rng, i, at),
+                // Impassable edges the hazard sweep does not draw.
+                "edges" => random::edge_scene_within(rng, i, at),
+                // Climbable ramps up and down met obliquely.
+                _ => random::oblique_scene_within(rng, at),
+            };
+            (t, w, rig.config, tol)
+        }
+        "hazards" => {
+            let (t, w) = random::hazard_scene(rng, i);
+            (t, w, Config::default(), tol)
+        }
+        "families" => {
+            let rig = if random_rig {
+                families::Rig::random(rng)
+            } else {
+                families::Rig::default_rig()
+            };
+            let fam = match family {
+                Some(k) => families::Family::ALL[k],
+                None => families::Family::ALL[i % families::Family::ALL.len()],
+            };
+            let d = families::draw(rng, fam, rig);
+            (d.terrain, d.expect, d.rig.config, d.tolerance)
+        }
+        _ => {
+            let (t, w) = random::workcase_scene(rng, i);
+            (t, w, Config::default(), tol)
+        }
     }
 }
