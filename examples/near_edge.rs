@@ -18,6 +18,13 @@
 //! toe lies in the last 0.35 m of what the rig sees, where
 //! it rises out of the image within a few cells. It should be go; every other verdict
 //! is printed with its hazards, and the last line counts them.
+//!
+//! `-- N SEED rough` puts, on the same rigs, a ramp on rough ground (±2.5 cm, drawn
+//! as plane waves or as value noise, correlation 10-20 cm) whose toe lies 0.3-0.7 m
+//! before the end of the view: half climbable (12-25°, should be go), half over the
+//! slope limit (31.5-40°, must not be go). The last line counts the gos on steep
+//! ramps and the other verdicts on climbable ones; `ALL=1` prints every frame's drawn
+//! and measured gradient.
 
 use rand::{Rng, SeedableRng};
 use rover_terrain::sim::{self, families, Element, Extent, KinectNoise, Terrain};
@@ -29,12 +36,43 @@ fn main() {
     let seed: u64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(1);
     let far = args.get(3).map(String::as_str) == Some("far");
     let passable = args.get(3).map(String::as_str) == Some("passable");
+    let rough = args.get(3).map(String::as_str) == Some("rough");
+    let (mut steep_go, mut climbable_not_go) = (0, 0);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let (mut total, mut flagged) = (0, 0);
     for i in 0..n {
         let config = families::Rig::random(&mut rng).config;
         let (near, end) = families::footprint(&config);
-        let element = if passable {
+        let mut elements = Vec::new();
+        let mut steep = false;
+        let element = if rough {
+            if end > config.analysis.corridor_length_m - 0.1 {
+                continue;
+            }
+            steep = rng.gen_bool(0.5);
+            let toe = rng.gen_range(end - 0.7..end - 0.3);
+            let gradient = if steep {
+                rng.gen_range(31.5..40.0)
+            } else {
+                rng.gen_range(12.0..25.0)
+            };
+            let (correlation_m, seed) = (rng.gen_range(0.1..0.2), rng.gen());
+            elements.push(if rng.gen_bool(0.5) {
+                Element::Rough {
+                    amplitude_m: 0.025,
+                    correlation_m,
+                    seed,
+                }
+            } else {
+                Element::Lumpy {
+                    amplitude_m: 0.025,
+                    spacing_m: correlation_m,
+                    seed,
+                }
+            });
+            let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
+            Element::ramp(toe, 0.0, gradient, 0.0, extent)
+        } else if passable {
             // Only rigs whose view ends inside the corridor: else the ramp would rise
             // out of the corridor, not out of the image.
             if end > config.analysis.corridor_length_m - 0.1 {
@@ -52,7 +90,8 @@ fn main() {
             };
             impassable(&mut rng, i, x, &config)
         };
-        let terrain = Terrain::new(vec![element]);
+        elements.push(element);
+        let terrain = Terrain::new(elements);
         let frame = sim::render(&terrain, &config);
         let mut pipeline = Pipeline::new(config.clone()).expect("a random rig is a valid rig");
         for noisy in [false, true] {
@@ -66,14 +105,36 @@ fn main() {
             }
             let v = pipeline.process(&f).expect("frame fits");
             total += 1;
-            // A go is wrong here, anything else on the passable control.
-            if (v.decision == Decision::Go) == passable {
+            // A go is wrong here, anything else on the passable control; on rough
+            // ramps, a go on a steep one or anything else on a climbable one.
+            let go = v.decision == Decision::Go;
+            let wrong = if rough { go == steep } else { go != passable };
+            if rough && std::env::var("ALL").is_ok() {
+                if let Some(Element::Ramp {
+                    toe_x_m,
+                    gradient_deg,
+                    extent,
+                    ..
+                }) = terrain.elements.last()
+                {
+                    println!(
+                        "ALL #{i} noisy={noisy} drawn {gradient_deg:.1} toe {toe_x_m:.2} end {end:.2} {extent:?} cam={} -> {:?} measured {:?} seen {:?}",
+                        config.camera.width, v.decision, v.feature.map(|f| f.gradient_deg), v.seen_to_m
+                    );
+                }
+            }
+            if !wrong {
                 continue;
             }
             flagged += 1;
+            if rough && steep {
+                steep_go += 1;
+            } else if rough {
+                climbable_not_go += 1;
+            }
             println!(
                 "{} #{i} noisy={noisy} near={near:.3} end={end:.3} {:?} mount={:?} cam={}x{} feature={:?} hazards={:?}",
-                if passable { "NOT GO" } else { "GO" },
+                if go { "GO" } else { "NOT GO" },
                 terrain.elements,
                 config.mount,
                 config.camera.width,
@@ -91,8 +152,14 @@ fn main() {
             }
         }
     }
-    let counted = if passable { "not go" } else { "go" };
-    println!("{total} frames, {flagged} {counted}");
+    if rough {
+        println!(
+            "{total} frames, {steep_go} go on a steep rough ramp, {climbable_not_go} not go on a climbable one"
+        );
+    } else {
+        let counted = if passable { "not go" } else { "go" };
+        println!("{total} frames, {flagged} {counted}");
+    }
 }
 
 /// The `i`-th impassable hazard at `x` metres on the rig `config`: a step up or down

@@ -3,6 +3,9 @@
 //! `cargo run --release --example sweep -- [workcases|hazards] [N] [SEED]`, or
 //! `-- families [N] [SEED] [default|random] [FAMILY-INDEX]` for the scene families of
 //! `sim::families` on the default rig or on random mounts and cameras, or
+//! `-- natural [N] [SEED] [default|random] [FAMILY-INDEX]` for the same scenes drawn
+//! another way (`families::restyled`: value-noise rough ground, stones of four other
+//! shapes), or
 //! `-- hazards N SEED random` for the go/stop edges on random rigs, each edge where
 //! the rig sees the tracks, or `-- edges N SEED` for impassable edges that sweep
 //! does not draw (a step down under one side, a descent steeper than the limit, a
@@ -141,7 +144,7 @@ fn draw(
             let (t, w) = random::hazard_scene(rng, i);
             (t, w, Config::default(), tol)
         }
-        "families" => {
+        "families" | "natural" => {
             let rig = if random_rig {
                 families::Rig::random(rng)
             } else {
@@ -151,7 +154,13 @@ fn draw(
                 Some(k) => families::Family::ALL[k],
                 None => families::Family::ALL[i % families::Family::ALL.len()],
             };
-            let d = families::draw(rng, fam, rig);
+            let mut d = families::draw(rng, fam, rig);
+            if mode == "natural" {
+                // Its own stream, so the scenes are `families`' scenes, restyled.
+                let mut style = rng.clone();
+                style.set_stream(1);
+                d = families::restyled(&mut style, d);
+            }
             (d.terrain, d.expect, d.rig.config, d.tolerance)
         }
         _ => {

@@ -12,7 +12,7 @@
 use rand::Rng;
 
 use super::catalogue::Expectation;
-use super::terrain::{Element, Extent, Terrain};
+use super::terrain::{Element, Extent, StoneShape, Terrain};
 use super::{Tolerance, CLEAN, NOISY};
 use crate::config::Config;
 use crate::verdict::{Decision, HazardKind};
@@ -360,6 +360,42 @@ fn rocks<R: Rng>(rng: &mut R, n: usize, h: (f64, f64), x: (f64, f64)) -> Vec<Ele
     elements
 }
 
+/// `d` drawn another way, as a renderer other than ours might: each rough field
+/// becomes value noise of the same amplitude on a lattice as fine as its correlation
+/// length ([`Element::Lumpy`], steeper bumps than the plane waves'), each rock a
+/// stone of a random shape ([`StoneShape`]: cone, spherical cap, Gaussian mound,
+/// boulder) on the same footprint and of the same height. The expectation stands:
+/// it is stated from the heights and sizes, which do not change.
+pub fn restyled<R: Rng>(rng: &mut R, mut d: Draw) -> Draw {
+    for e in &mut d.terrain.elements {
+        *e = match *e {
+            Element::Rough {
+                amplitude_m,
+                correlation_m,
+                seed,
+            } => Element::Lumpy {
+                amplitude_m,
+                spacing_m: correlation_m,
+                seed,
+            },
+            Element::Rock {
+                x_m,
+                y_m,
+                radius_m,
+                height_m,
+            } => Element::Stone {
+                x_m,
+                y_m,
+                radius_m,
+                height_m,
+                shape: StoneShape::ALL[rng.gen_range(0..StoneShape::ALL.len())],
+            },
+            ref other => other.clone(),
+        };
+    }
+    d
+}
+
 /// Draw a scene of `family` on `rig`.
 pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
     let at = Setting::new(rng, &rig.config);
@@ -657,6 +693,51 @@ mod tests {
         (c.mount.x_m, c.mount.y_m, c.mount.z_m) = (0.0, 0.0, 1.2);
         (c.mount.roll_deg, c.mount.pitch_deg, c.mount.yaw_deg) = (0.0, 30.0, 0.0);
         c
+    }
+
+    #[test]
+    fn a_restyled_scene_keeps_its_geometry_and_its_expectation() {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4);
+        let d = draw(&mut rng, Family::RockFieldWithBoulder, Rig::default_rig());
+        let r = restyled(&mut rng, d.clone());
+        assert_eq!(r.expect, d.expect);
+        assert_eq!(r.terrain.elements.len(), d.terrain.elements.len());
+        for (a, b) in d.terrain.elements.iter().zip(&r.terrain.elements) {
+            match (a, b) {
+                (
+                    Element::Rough {
+                        amplitude_m,
+                        correlation_m,
+                        seed,
+                    },
+                    Element::Lumpy {
+                        amplitude_m: a2,
+                        spacing_m,
+                        seed: s2,
+                    },
+                ) => assert_eq!((amplitude_m, correlation_m, seed), (a2, spacing_m, s2)),
+                (
+                    Element::Rock {
+                        x_m,
+                        y_m,
+                        radius_m,
+                        height_m,
+                    },
+                    Element::Stone {
+                        x_m: x2,
+                        y_m: y2,
+                        radius_m: r2,
+                        height_m: h2,
+                        ..
+                    },
+                ) => assert_eq!((x_m, y_m, radius_m, height_m), (x2, y2, r2, h2)),
+                other => panic!("not restyled: {other:?}"),
+            }
+        }
+        // Its height bounds, which the renderer marches rays within, are the same.
+        let (_, top) = r.terrain.bounds();
+        assert_eq!(top, d.terrain.bounds().1);
     }
 
     #[test]

@@ -11,7 +11,7 @@ mod terrain;
 
 pub use catalogue::{catalogue, Expectation, Scene, SceneConfig, Tolerance, CLEAN, NOISY};
 pub use noise::KinectNoise;
-pub use terrain::{Element, Extent, HeightField, Terrain, ROUGH_WAVES};
+pub use terrain::{Element, Extent, HeightField, StoneShape, Terrain, ROUGH_WAVES};
 
 use rover_terrain_drivers::DepthFrame;
 
@@ -295,6 +295,78 @@ mod tests {
         assert!(corr(4.0 * ell).abs() < 0.25, "corr(4ℓ) {}", corr(4.0 * ell));
         // The same seed draws the same ground.
         assert_eq!(t.height(1.234, 0.321), t.clone().height(1.234, 0.321));
+    }
+
+    #[test]
+    fn value_noise_ground_takes_its_lattice_values_and_blends_smoothly() {
+        let (amp, spacing) = (0.025, 0.12);
+        let lumpy = |seed| {
+            Terrain::new(vec![Element::Lumpy {
+                amplitude_m: amp,
+                spacing_m: spacing,
+                seed,
+            }])
+        };
+        let t = lumpy(11);
+        // At lattice points the height is a lattice value; halfway between two, the
+        // smoothstep weighs both by one half.
+        let at = |i: f64, j: f64| t.height(i * spacing, j * spacing);
+        for (i, j) in [(3.0, -2.0), (10.0, 4.0), (-1.0, 0.0)] {
+            let mid = t.height((i + 0.5) * spacing, j * spacing);
+            assert!((mid - 0.5 * (at(i, j) + at(i + 1.0, j))).abs() < 1e-12);
+        }
+        // Within ±amplitude, spread over it (uniform lattice values: σ = a/√3 at
+        // lattice points), mean about 0, and continuous with its slope bounded by
+        // the smoothstep's (1.5 × the largest step between lattice values, 2a, over
+        // the spacing): 1 mm apart, heights differ by at most that much.
+        let h: Vec<f64> = (0..400)
+            .flat_map(|i| (0..40).map(move |j| (i as f64, j as f64 - 20.0)))
+            .map(|(i, j)| at(i, j))
+            .collect();
+        let n = h.len() as f64;
+        let mean = h.iter().sum::<f64>() / n;
+        let sd = (h.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
+        assert!(h.iter().all(|v| v.abs() <= amp));
+        assert!(mean.abs() < 0.05 * amp, "mean {mean}");
+        assert!((sd / amp - 3f64.sqrt().recip()).abs() < 0.03, "sd {sd}");
+        for k in 0..200 {
+            let (x, y) = (k as f64 * 0.0137, 0.3 - k as f64 * 0.0041);
+            let bound = 1.5 * 2.0 * amp / spacing * 0.001 + 1e-12;
+            assert!((t.height(x + 0.001, y) - t.height(x, y)).abs() <= bound);
+        }
+        // The same seed draws the same ground, another seed other ground.
+        assert_eq!(at(2.0, 3.0), lumpy(11).height(2.0 * spacing, 3.0 * spacing));
+        assert_ne!(at(2.0, 3.0), lumpy(12).height(2.0 * spacing, 3.0 * spacing));
+    }
+
+    #[test]
+    fn stones_have_their_profiles_by_hand() {
+        let (h, r) = (0.09, 0.15);
+        let height = |shape, d: f64| {
+            Terrain::new(vec![Element::Stone {
+                x_m: 1.0,
+                y_m: 0.4,
+                radius_m: r,
+                height_m: h,
+                shape,
+            }])
+            .height(1.0 + d * 0.6, 0.4 + d * 0.8)
+        };
+        for shape in StoneShape::ALL {
+            assert!((height(shape, 0.0) - h).abs() < 1e-12, "{shape:?} top");
+            assert_eq!(height(shape, r), 0.0, "{shape:?} rim");
+            assert_eq!(height(shape, 0.2), 0.0, "{shape:?} outside");
+        }
+        assert!((height(StoneShape::Cone, 0.5 * r) - 0.5 * h).abs() < 1e-12);
+        // A sphere through the rim and the top: radius (R² + h²)/2h = 0.17 m, its
+        // centre 0.08 m below the ground; at 0.1 m out, √(0.17² − 0.1²) − 0.08.
+        let cap = (0.17f64.powi(2) - 0.1f64.powi(2)).sqrt() - 0.08;
+        assert!((height(StoneShape::Cap, 0.1) - cap).abs() < 1e-12);
+        // σ = R/3: a third of the way out, e^(−1/2) of the top.
+        let mound = h * (-0.5f64).exp();
+        assert!((height(StoneShape::Mound, r / 3.0) - mound).abs() < 1e-12);
+        let boulder = h * (1.0 - 0.5f64.powi(4)).powf(0.25);
+        assert!((height(StoneShape::Boulder, 0.5 * r) - boulder).abs() < 1e-12);
     }
 
     #[test]

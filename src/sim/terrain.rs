@@ -105,6 +105,88 @@ pub enum Element {
         /// Random seed of the field.
         seed: u64,
     },
+    /// Rough natural ground drawn another way than [`Element::Rough`]: value noise,
+    /// heights uniform within `±amplitude_m` on a square lattice of `spacing_m`,
+    /// blended between lattice points with a smoothstep (continuous slope).
+    /// Deterministic for `seed`.
+    Lumpy {
+        /// Largest height change either way, metres.
+        amplitude_m: f64,
+        /// Lattice spacing, metres.
+        spacing_m: f64,
+        /// Random seed of the field.
+        seed: u64,
+    },
+    /// A stone of another shape than [`Element::Rock`]'s half-ellipsoid, on the
+    /// same round footprint.
+    Stone {
+        /// Centre, metres forward.
+        x_m: f64,
+        /// Centre, metres left.
+        y_m: f64,
+        /// Radius on the ground, metres.
+        radius_m: f64,
+        /// Height, metres.
+        height_m: f64,
+        /// Its profile.
+        shape: StoneShape,
+    },
+}
+
+/// The profile of an [`Element::Stone`], as height over distance from its centre.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StoneShape {
+    /// A cone: straight flanks to a point.
+    Cone,
+    /// A spherical cap: the part of a sphere above the ground.
+    Cap,
+    /// A Gaussian mound (σ a third of the radius), cut at the footprint.
+    Mound,
+    /// A superellipsoid of exponent 4: steep flanks and a broad, flat-ish top.
+    Boulder,
+}
+
+impl StoneShape {
+    /// Every shape.
+    pub const ALL: [StoneShape; 4] = [
+        StoneShape::Cone,
+        StoneShape::Cap,
+        StoneShape::Mound,
+        StoneShape::Boulder,
+    ];
+
+    /// Height as a fraction of the stone's at `r`, the distance from its centre as a
+    /// fraction of its radius (0 at and past the rim), for a stone `h` high and
+    /// `radius` wide (the cap's curvature depends on both).
+    fn profile(self, r: f64, h: f64, radius: f64) -> f64 {
+        if r >= 1.0 {
+            return 0.0;
+        }
+        match self {
+            StoneShape::Cone => 1.0 - r,
+            StoneShape::Cap => {
+                // The sphere through the rim and the top: ρ = (R² + h²) / 2h.
+                let rho = (radius * radius + h * h) / (2.0 * h);
+                let d = r * radius;
+                ((rho * rho - d * d).sqrt() - (rho - h)) / h
+            }
+            StoneShape::Mound => (-4.5 * r * r).exp(),
+            StoneShape::Boulder => (1.0 - r.powi(4)).powf(0.25),
+        }
+    }
+}
+
+/// A uniform number in [−1, 1] for lattice point (i, j) of field `seed`
+/// (SplitMix64 of the three).
+fn lattice_value(i: i64, j: i64, seed: u64) -> f64 {
+    let mut z = seed
+        ^ (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ (j as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
 }
 
 /// Plane waves summed by [`Element::Rough`].
@@ -225,6 +307,31 @@ impl Element {
                     0.0
                 }
             }
+            Element::Lumpy {
+                amplitude_m,
+                spacing_m,
+                seed,
+            } => {
+                let (fx, fy) = (x / spacing_m, y / spacing_m);
+                let (i, j) = (fx.floor(), fy.floor());
+                let smooth = |t: f64| t * t * (3.0 - 2.0 * t);
+                let (a, b) = (smooth(fx - i), smooth(fy - j));
+                let (i, j) = (i as i64, j as i64);
+                let at = |di: i64, dj: i64| lattice_value(i + di, j + dj, seed);
+                amplitude_m
+                    * ((1.0 - a) * ((1.0 - b) * at(0, 0) + b * at(0, 1))
+                        + a * ((1.0 - b) * at(1, 0) + b * at(1, 1)))
+            }
+            Element::Stone {
+                x_m,
+                y_m,
+                radius_m,
+                height_m,
+                shape,
+            } => {
+                let r = (x - x_m).hypot(y - y_m) / radius_m;
+                height_m * shape.profile(r, height_m, radius_m)
+            }
             Element::Rough { .. } => unreachable!("rough fields are evaluated by Terrain"),
         }
     }
@@ -244,9 +351,13 @@ impl Element {
                 }
             }
             Element::Step { height_m, .. } => height_m,
-            Element::Block { height_m, .. } | Element::Rock { height_m, .. } => height_m,
+            Element::Block { height_m, .. }
+            | Element::Rock { height_m, .. }
+            | Element::Stone { height_m, .. } => height_m,
             Element::DropOff { depth_m, .. } => -depth_m,
-            Element::Rough { amplitude_m, .. } => return (-amplitude_m, amplitude_m),
+            Element::Rough { amplitude_m, .. } | Element::Lumpy { amplitude_m, .. } => {
+                return (-amplitude_m, amplitude_m)
+            }
         };
         (h.min(0.0), h.max(0.0))
     }
