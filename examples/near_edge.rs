@@ -7,7 +7,9 @@
 //! its clearance, placed from 0.35 m before the near edge of what the rig sees
 //! (`sim::families::footprint`) to 0.12 m past it (with `far`: from that edge to
 //! 1.2 m past it). Each scene is analysed clean and with Kinect v1 noise; every go is
-//! printed, and the last line counts them. `DUMP=DIR` writes each such scene's
+//! printed, and the last line counts them. With `far`, a hazard that starts past the
+//! far end of what the rig sees is not in the frame at all: any verdict passes there,
+//! and a last line counts those frames. `DUMP=DIR` writes each such scene's
 //! terrain (`N.json`) and configuration (`N.toml`) for the `cells` example.
 //!
 //! There is no other bar: unknown and stop are both right here (a hazard below the
@@ -37,7 +39,7 @@ fn main() {
     let far = args.get(3).map(String::as_str) == Some("far");
     let passable = args.get(3).map(String::as_str) == Some("passable");
     let rough = args.get(3).map(String::as_str) == Some("rough");
-    let (mut steep_go, mut climbable_not_go) = (0, 0);
+    let (mut steep_go, mut climbable_not_go, mut past_view) = (0, 0, 0);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let (mut total, mut flagged) = (0, 0);
     for i in 0..n {
@@ -45,6 +47,7 @@ fn main() {
         let (near, end) = families::footprint(&config);
         let mut elements = Vec::new();
         let mut steep = false;
+        let mut unseen = false;
         let element = if rough {
             if end > config.analysis.corridor_length_m - 0.1 {
                 continue;
@@ -88,7 +91,15 @@ fn main() {
             } else {
                 rng.gen_range((near - 0.35).max(0.3)..near + 0.12)
             };
-            impassable(&mut rng, i, x, &config)
+            let element = impassable(&mut rng, i, x, &config);
+            // With `far`, the hazard may start past what the rig sees of flat ground
+            // at all: nothing of it is in the frame, and any verdict passes.
+            let near_edge = match element {
+                Element::Block { x_m, .. } => x_m,
+                _ => x,
+            };
+            unseen = near_edge >= end;
+            element
         };
         elements.push(element);
         let terrain = Terrain::new(elements);
@@ -108,7 +119,12 @@ fn main() {
             // A go is wrong here, anything else on the passable control; on rough
             // ramps, a go on a steep one or anything else on a climbable one.
             let go = v.decision == Decision::Go;
-            let wrong = if rough { go == steep } else { go != passable };
+            let wrong = if rough {
+                go == steep
+            } else {
+                go != passable && !unseen
+            };
+            past_view += usize::from(unseen);
             if rough && std::env::var("ALL").is_ok() {
                 if let Some(Element::Ramp {
                     toe_x_m,
@@ -159,6 +175,11 @@ fn main() {
     } else {
         let counted = if passable { "not go" } else { "go" };
         println!("{total} frames, {flagged} {counted}");
+        if far {
+            println!(
+                "{past_view} frames with the hazard wholly past the view (any verdict passes)"
+            );
+        }
     }
 }
 

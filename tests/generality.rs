@@ -1476,3 +1476,46 @@ fn a_face_met_side_on_reports_where_its_toe_line_meets_the_tracks() {
         }
     }
 }
+
+#[test]
+fn a_rough_ramp_rising_out_of_view_is_judged_by_its_line_and_a_steep_one_still_stops() {
+    // `sweep -- natural 88 197 random` #38: a 320×240 camera 0.53 m high pitched 30°
+    // sees a 24.5° ramp on value-noise ground (±2.5 cm on an 11.7 cm lattice) from its
+    // toe at 1.46 m for 0.5 m before its view ends: no wheelbase of it to fit a line
+    // to. Over 0.2 m the bumps make it climb 31-32°, which was a slope stop on both
+    // tracks. The flat before the toe and the ramp after it are two lines within the
+    // bumps' spread: the ramp's line is what the rover climbs.
+    let mut c = mounted([0.2168, 0.0437, 0.5297], [3.098, 29.987, -6.018]);
+    c.camera.width = 320;
+    c.camera.height = 240;
+    c.camera.min_range_m = 0.3307;
+    let lumpy = Element::Lumpy {
+        amplitude_m: 0.025,
+        spacing_m: 0.11706,
+        seed: 4060366437643161416,
+    };
+    let ramp = |gradient_deg: f64, cap_m: Option<f64>| {
+        vec![
+            lumpy.clone(),
+            Element::ramp(1.4567, 0.0, gradient_deg, 0.0, Extent::Full).capped(cap_m),
+        ]
+    };
+    for v in [
+        analyse(ramp(24.53, None), &c),
+        analyse_noisy(ramp(24.53, None), &c, 197_038),
+        analyse_noisy(ramp(24.53, None), &c, 5),
+    ] {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert_eq!(v.feature.map(|f| f.workcase), Some(2));
+    }
+    // Over the limit on the same ground, and a 45° bank 15 cm high with the flat
+    // above it (not one line after the toe): never go.
+    for scene in [ramp(33.0, None), ramp(36.0, None), ramp(45.0, Some(0.15))] {
+        for v in [
+            analyse(scene.clone(), &c),
+            analyse_noisy(scene.clone(), &c, 5),
+        ] {
+            assert_ne!(v.decision, Decision::Go, "{scene:?}: {:?}", v.feature);
+        }
+    }
+}

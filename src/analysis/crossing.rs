@@ -793,9 +793,89 @@ fn sustained(run: &[StripCell]) -> bool {
 /// [`ROUGH_LINE_RMS_M`]), the ground is that line and its least-squares slope counts
 /// (the gentler of the two when both are lines). Otherwise the run's own: a short
 /// steep bank and the flat beside it are not one line, and keep their steepness.
+///
+/// Where the view ends less than a wheelbase past the run's start, so that no such
+/// window is seen, the ground from a hinge before the run to where the view ends
+/// counts instead when it is long enough ([`view_end_slope`]).
 fn climb_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> f32 {
-    line_windows(strip, i, j, wheelbase).fold(fitted_slope(&strip[i..=j]), f32::min)
+    line_windows(strip, i, j, wheelbase)
+        .chain(view_end_slope(strip, i, j, wheelbase))
+        .fold(fitted_slope(&strip[i..=j]), f32::min)
 }
+
+/// The slope |dz/dx| of a rough ramp that rises out of the view less than 0.9 of a
+/// wheelbase past the run `strip[i..=j]`, so that [`line_windows`] has no window
+/// ahead: over the wheelbase of contiguous cells seen whole that ends where the view
+/// does (the next cell past the horizon, or none), the best two lines joined at a
+/// hinge at or before the run's start (the ground before the ramp's toe, the ramp
+/// after it), when they explain the cells within rough ground's spread
+/// ([`ROUGH_LINE_RMS_M`]) and the ramp's line is at least [`VIEW_END_RAMP_M`] long;
+/// the ramp line's slope plus twice its standard error (so a rough ramp just over
+/// the limit is not let through by its bumps: on ±2.5 cm ground 0.45 m of ramp
+/// gives about 1.5°). A ramp's own slope, not a dip-to-bump run's: on ±2.5 cm
+/// ground 0.2 m of a 24° ramp can climb 32°. A short bank and the flat above it are
+/// not one line after the hinge, and keep their steepness; so does a ramp seen for
+/// less than [`VIEW_END_RAMP_M`].
+fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Option<f32> {
+    let joined =
+        |k: usize| strip[k + 1].ix == strip[k].ix + 1 && !strip[k].past && !strip[k + 1].past;
+    if strip[i].past {
+        return None;
+    }
+    let mut end = if strip[j].past { j - 1 } else { j };
+    while end + 1 < strip.len() && joined(end) {
+        end += 1;
+    }
+    let view_ends = end + 1 == strip.len() || strip[end + 1].past;
+    if !view_ends || end < i || strip[end].x - strip[i].x >= 0.9 * wheelbase {
+        return None;
+    }
+    let mut start = i;
+    while start > 0 && joined(start - 1) && strip[end].x - strip[start - 1].x <= wheelbase {
+        start -= 1;
+    }
+    let window = &strip[start..=end];
+    // Two cells at least on the line before the hinge, so that it is a line.
+    (start + 2..=i)
+        .filter(|&h| strip[end].x - strip[h].x >= VIEW_END_RAMP_M)
+        .filter_map(|h| {
+            let hinge = strip[h].x;
+            let mut fit = PlaneFit::default();
+            for c in window {
+                let (x, after) = (f64::from(c.x), f64::from((c.x - hinge).max(0.0)));
+                fit.add(x, after, f64::from(c.wheel), 1.0);
+            }
+            let p = fit.solve()?;
+            let ss: f64 = window
+                .iter()
+                .map(|c| {
+                    let after = f64::from((c.x - hinge).max(0.0));
+                    (f64::from(c.wheel) - p.z(f64::from(c.x), after)).powi(2)
+                })
+                .sum();
+            let n = window.len() as f64;
+            // The ramp line's slope, raised by twice its standard error: the line
+            // must be climbable with confidence, not by the luck of the bumps.
+            let ramp = || {
+                window
+                    .iter()
+                    .map(|c| f64::from(c.x))
+                    .filter(|&x| x >= f64::from(hinge))
+            };
+            let (k, sum) = ramp().fold((0.0, 0.0), |(k, s), x| (k + 1.0, s + x));
+            let spread: f64 = ramp().map(|x| (x - sum / k).powi(2)).sum();
+            let sigma = (ss / (n - 3.0).max(1.0)).sqrt();
+            let slope = (p.a + p.b).abs() + 2.0 * sigma / spread.sqrt();
+            Some(((ss / n).sqrt(), slope as f32))
+        })
+        .filter(|&(rms, _)| rms <= f64::from(ROUGH_LINE_RMS_M))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, slope)| slope)
+}
+
+/// Least length of a ramp's line for [`view_end_slope`], metres: over 0.4 m, ±2.5 cm
+/// ground moves a line's slope by about 2° (one σ); over 0.25 m by 5°.
+const VIEW_END_RAMP_M: f32 = 0.4;
 
 /// The slopes |dz/dx| of the windows about a run `strip[i..=j]` that lie on one line
 /// (see [`climb_slope`]): a wheelbase of contiguous cells seen whole starting at the
