@@ -569,6 +569,22 @@ fn random_scene_families_on_random_rigs_never_give_a_false_go() {
 }
 
 #[test]
+fn natural_ground_drawn_another_way_never_gives_a_false_go() {
+    // Value-noise ground and stones of other shapes (cone, cap, mound, boulder):
+    // terrain our plane-wave field and half-ellipsoid rocks do not draw.
+    let results = rover_terrain::validate::run_families_restyled(1, 43).unwrap();
+    assert_eq!(results.len(), 6 * 2 * 2);
+    let false_go: Vec<String> = results
+        .iter()
+        .filter(|r| r.got.decision == Decision::Go && r.expect.verdict != Decision::Go)
+        .map(|r| format!("{:?}: {:?}", r.family, r.failures))
+        .collect();
+    assert!(false_go.is_empty(), "{false_go:#?}");
+    let passed = results.iter().filter(|r| r.failures.is_empty()).count();
+    assert!(passed + 2 >= results.len(), "{passed} of {}", results.len());
+}
+
+#[test]
 fn impassable_edges_the_hazard_sweep_does_not_draw_are_never_go_on_random_rigs() {
     // A step down under one side, a descent steeper than the limit, a block in a
     // track, a ditch across the corridor or under one track, a too-steep ramp met

@@ -32,6 +32,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
     if families > 0 {
         let swept = validate::run_families(families, validate::FAMILY_SEED)?;
         report += &validate::families_report(&swept, families, validate::FAMILY_SEED);
+        let restyled = validate::run_families_restyled(families, validate::FAMILY_SEED)?;
+        report += &validate::restyled_report(&restyled, families, validate::FAMILY_SEED);
         let drive = validate::run_memory_drive(validate::FAMILY_SEED)?;
         report += &validate::memory_drive_report(&drive, validate::FAMILY_SEED);
     }

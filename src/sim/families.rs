@@ -64,6 +64,17 @@ impl Family {
         Family::RockOnRamp,
     ];
 
+    /// The families of natural ground: rough ground and rocks, the ones
+    /// [`restyled`] draws another way.
+    pub const NATURAL: [Family; 6] = [
+        Family::RoughFlat,
+        Family::RoughRamp,
+        Family::RockField,
+        Family::RockFieldWithBoulder,
+        Family::BellyRock,
+        Family::RockOnRamp,
+    ];
+
     /// A short name for reports.
     pub fn name(self) -> &'static str {
         match self {
