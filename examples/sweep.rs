@@ -19,7 +19,9 @@
 //! just those scenes of the sweep. The last line counts the failures and, of them,
 //! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain
 //! (`N.json`, for `cells`) and configuration (`N.toml`, for `cells`' `CONFIG` and
-//! `rover-terrain inspect --config`) there.
+//! `rover-terrain inspect --config`) there. `FLYING=FRACTION` also mixes that fraction
+//! of the noisy frames' depth-edge pixels (`sim::FlyingPixels`, as time-of-flight
+//! cameras give).
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -57,6 +59,15 @@ fn main() {
                     ..Default::default()
                 }
                 .apply(&mut f, config.camera.hfov_deg);
+                // FLYING=FRACTION: mix that fraction of the edge pixels too.
+                if let Some(fraction) = std::env::var("FLYING").ok().and_then(|v| v.parse().ok()) {
+                    sim::FlyingPixels {
+                        seed: seed * 1000 + i as u64,
+                        fraction,
+                        ..Default::default()
+                    }
+                    .apply(&mut f);
+                }
             }
             let v = pipeline.process(&f).expect("frame fits");
             // A climbable surface the camera meets at grazing incidence somewhere in

@@ -10,7 +10,7 @@ pub mod random;
 mod terrain;
 
 pub use catalogue::{catalogue, Expectation, Scene, SceneConfig, Tolerance, CLEAN, NOISY};
-pub use noise::KinectNoise;
+pub use noise::{FlyingPixels, KinectNoise};
 pub use terrain::{Element, Extent, HeightField, StoneShape, Terrain, ROUGH_WAVES};
 
 use rover_terrain_drivers::DepthFrame;

@@ -73,9 +73,116 @@ impl KinectNoise {
     }
 }
 
+/// Mixed ("flying") pixels at depth edges, as time-of-flight cameras and renderers
+/// that average over a pixel's footprint give: a pixel whose depth differs from one
+/// of its four neighbours' by more than `min_jump_m` takes, with probability
+/// `fraction`, a depth drawn uniformly between its own and that neighbour's (the
+/// farthest such neighbour). Pixels with no return stay so and mix with none.
+/// Deterministic for `seed`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FlyingPixels {
+    /// Random seed.
+    pub seed: u64,
+    /// Fraction of the edge pixels mixed, 0..1.
+    pub fraction: f64,
+    /// Least depth jump to a neighbour that makes an edge, metres.
+    pub min_jump_m: f64,
+}
+
+impl Default for FlyingPixels {
+    fn default() -> Self {
+        FlyingPixels {
+            seed: 1,
+            fraction: 0.5,
+            min_jump_m: 0.05,
+        }
+    }
+}
+
+impl FlyingPixels {
+    /// Mix the edge pixels of `frame`.
+    pub fn apply(&self, frame: &mut DepthFrame) {
+        let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+        let (w, h) = (frame.width(), frame.height());
+        let before = frame.pixels().to_vec();
+        let jump = self.min_jump_m * 1000.0;
+        for (k, p) in frame.pixels_mut().iter_mut().enumerate() {
+            let (u, v) = (k % w, k / w);
+            let own = f64::from(before[k]);
+            let (mix, t): (bool, f64) = (rng.gen_bool(self.fraction), rng.gen());
+            if own == 0.0 || !mix {
+                continue;
+            }
+            let neighbours = [
+                (u > 0).then(|| k - 1),
+                (u + 1 < w).then(|| k + 1),
+                (v > 0).then(|| k - w),
+                (v + 1 < h).then(|| k + w),
+            ];
+            let far = neighbours
+                .into_iter()
+                .flatten()
+                .map(|j| f64::from(before[j]))
+                .filter(|&d| d > 0.0 && (d - own).abs() > jump)
+                .fold(None, |m: Option<f64>, d| {
+                    Some(m.map_or(d, |m| {
+                        if (d - own).abs() > (m - own).abs() {
+                            d
+                        } else {
+                            m
+                        }
+                    }))
+                });
+            if let Some(other) = far {
+                *p = (own + t * (other - own)).round() as u16;
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn flying_pixels_mix_only_across_depth_edges() {
+        // Columns 0-7 at 1 m, 8-15 at 2 m, and one pixel with no return.
+        let mut px: Vec<u16> = (0..16 * 4)
+            .map(|k| if k % 16 < 8 { 1000 } else { 2000 })
+            .collect();
+        px[16 * 2 + 3] = 0;
+        let clean = DepthFrame::from_pixels(16, 4, px);
+        let flying = FlyingPixels {
+            seed: 9,
+            fraction: 1.0,
+            min_jump_m: 0.05,
+        };
+        let (mut a, mut b) = (clean.clone(), clean.clone());
+        flying.apply(&mut a);
+        flying.apply(&mut b);
+        assert_eq!(a.pixels(), b.pixels());
+        let mut moved = 0;
+        for (k, (&got, &was)) in a.pixels().iter().zip(clean.pixels()).enumerate() {
+            let u = k % 16;
+            if u == 7 || u == 8 {
+                // An edge pixel lands between its depth and its neighbour's.
+                assert!((1000..=2000).contains(&got), "{k}: {got}");
+                moved += usize::from(got != was);
+            } else {
+                assert_eq!(got, was, "{k}: not at an edge");
+            }
+        }
+        assert!(moved >= 6, "{moved}");
+        // No mixing at all with fraction 0.
+        let mut c = clean.clone();
+        FlyingPixels {
+            fraction: 0.0,
+            ..flying
+        }
+        .apply(&mut c);
+        assert_eq!(c.pixels(), clean.pixels());
+    }
 
     #[test]
     fn deterministic_and_about_the_right_size() {
