@@ -811,8 +811,8 @@ fn climb_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> f32 {
 /// after it), when they explain the cells within rough ground's spread
 /// ([`ROUGH_LINE_RMS_M`]) and the ramp's line is at least [`VIEW_END_RAMP_M`] long;
 /// the ramp line's slope plus twice its standard error (so a rough ramp just over
-/// the limit is not let through by its bumps: on ±2.5 cm ground 0.45 m of ramp
-/// gives about 1.5°). A ramp's own slope, not a dip-to-bump run's: on ±2.5 cm
+/// the limit is not let through by its bumps: over 0.45 m of ramp on ±2.5 cm
+/// ground the standard error is about 1.3°). A ramp's own slope, not a dip-to-bump run's: on ±2.5 cm
 /// ground 0.2 m of a 24° ramp can climb 32°. A short bank and the flat above it are
 /// not one line after the hinge, and keep their steepness; so does a ramp seen for
 /// less than [`VIEW_END_RAMP_M`].
