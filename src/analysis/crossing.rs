@@ -812,18 +812,16 @@ fn climb_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> f32 {
 /// ([`ROUGH_LINE_RMS_M`]) and the ramp's line is at least [`VIEW_END_RAMP_M`] long;
 /// the ramp line's slope plus twice its standard error (so a rough ramp just over
 /// the limit is not let through by its bumps: over 0.45 m of ramp on ±2.5 cm
-/// ground the standard error is about 1.3°). A ramp's own slope, not a dip-to-bump run's: on ±2.5 cm
-/// ground 0.2 m of a 24° ramp can climb 32°. A short bank and the flat above it are
-/// not one line after the hinge, and keep their steepness; so does a ramp seen for
-/// less than [`VIEW_END_RAMP_M`].
+/// ground the standard error is about 1.3°). A ramp's own slope, not a dip-to-bump
+/// run's: on ±2.5 cm ground 0.2 m of a 24° ramp can climb 32°. A short bank and the
+/// flat above it are not one line after the hinge, and keep their steepness; so does
+/// a ramp seen for less than [`VIEW_END_RAMP_M`].
 fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Option<f32> {
-    let joined =
-        |k: usize| strip[k + 1].ix == strip[k].ix + 1 && !strip[k].past && !strip[k + 1].past;
     if strip[i].past {
         return None;
     }
     let mut end = if strip[j].past { j - 1 } else { j };
-    while end + 1 < strip.len() && joined(end) {
+    while end + 1 < strip.len() && joined(strip, end) {
         end += 1;
     }
     let view_ends = end + 1 == strip.len() || strip[end + 1].past;
@@ -831,7 +829,7 @@ fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Op
         return None;
     }
     let mut start = i;
-    while start > 0 && joined(start - 1) && strip[end].x - strip[start - 1].x <= wheelbase {
+    while start > 0 && joined(strip, start - 1) && strip[end].x - strip[start - 1].x <= wheelbase {
         start -= 1;
     }
     let window = &strip[start..=end];
@@ -873,6 +871,12 @@ fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Op
         .map(|(_, slope)| slope)
 }
 
+/// Whether strip cells `k` and `k + 1` are neighbouring rows, both seen whole (not
+/// past the horizon): a window of [`line_windows`] or [`view_end_slope`] runs on.
+fn joined(strip: &[StripCell], k: usize) -> bool {
+    strip[k + 1].ix == strip[k].ix + 1 && !strip[k].past && !strip[k + 1].past
+}
+
 /// Least length of a ramp's line for [`view_end_slope`], metres: over 0.4 m, ±2.5 cm
 /// ground moves a line's slope by about 2° (one σ); over 0.25 m by 5°.
 const VIEW_END_RAMP_M: f32 = 0.4;
@@ -886,17 +890,16 @@ fn line_windows(
     j: usize,
     wheelbase: f32,
 ) -> impl Iterator<Item = f32> + '_ {
-    let joined =
-        |k: usize| strip[k + 1].ix == strip[k].ix + 1 && !strip[k].past && !strip[k + 1].past;
     let mut end = j;
-    while end + 1 < strip.len() && joined(end) && strip[end + 1].x - strip[i].x <= wheelbase {
+    while end + 1 < strip.len() && joined(strip, end) && strip[end + 1].x - strip[i].x <= wheelbase
+    {
         end += 1;
     }
     // A run may end on a cell past the horizon (its height only a bound): the window
     // behind it ends on the last cell seen whole.
     let last = if strip[j].past && j > i { j - 1 } else { j };
     let mut start = i;
-    while start > 0 && joined(start - 1) && strip[last].x - strip[start - 1].x <= wheelbase {
+    while start > 0 && joined(strip, start - 1) && strip[last].x - strip[start - 1].x <= wheelbase {
         start -= 1;
     }
     [&strip[i..=end], &strip[start..=last]]
