@@ -36,73 +36,31 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let n: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(200);
     let seed: u64 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(1);
-    let far = args.get(3).map(String::as_str) == Some("far");
-    let passable = args.get(3).map(String::as_str) == Some("passable");
-    let rough = args.get(3).map(String::as_str) == Some("rough");
+    let mode = match args.get(3).map(String::as_str) {
+        Some("far") => Mode::Far,
+        Some("passable") => Mode::Passable,
+        Some("rough") => Mode::Rough,
+        _ => Mode::Near,
+    };
+    let (far, passable, rough) = (
+        mode == Mode::Far,
+        mode == Mode::Passable,
+        mode == Mode::Rough,
+    );
     let (mut steep_go, mut climbable_not_go, mut past_view) = (0, 0, 0);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let (mut total, mut flagged) = (0, 0);
     for i in 0..n {
         let config = families::Rig::random(&mut rng).config;
         let (near, end) = families::footprint(&config);
-        let mut elements = Vec::new();
-        let mut steep = false;
-        let mut unseen = false;
-        let element = if rough {
-            if end > config.analysis.corridor_length_m - 0.1 {
-                continue;
-            }
-            steep = rng.gen_bool(0.5);
-            let toe = rng.gen_range(end - 0.7..end - 0.3);
-            let gradient = if steep {
-                rng.gen_range(31.5..40.0)
-            } else {
-                rng.gen_range(12.0..25.0)
-            };
-            let (correlation_m, seed) = (rng.gen_range(0.1..0.2), rng.gen());
-            elements.push(if rng.gen_bool(0.5) {
-                Element::Rough {
-                    amplitude_m: 0.025,
-                    correlation_m,
-                    seed,
-                }
-            } else {
-                Element::Lumpy {
-                    amplitude_m: 0.025,
-                    spacing_m: correlation_m,
-                    seed,
-                }
-            });
-            let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
-            Element::ramp(toe, 0.0, gradient, 0.0, extent)
-        } else if passable {
-            // Only rigs whose view ends inside the corridor: else the ramp would rise
-            // out of the corridor, not out of the image.
-            if end > config.analysis.corridor_length_m - 0.1 {
-                continue;
-            }
-            let toe = rng.gen_range(end - 0.35..end - 0.02);
-            let gradient = rng.gen_range(10.0..27.0);
-            let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
-            Element::ramp(toe, 0.0, gradient, 0.0, extent)
-        } else {
-            let x = if far {
-                rng.gen_range(near..near + 1.2)
-            } else {
-                rng.gen_range((near - 0.35).max(0.3)..near + 0.12)
-            };
-            let element = impassable(&mut rng, i, x, &config);
-            // With `far`, the hazard may start past what the rig sees of flat ground
-            // at all: nothing of it is in the frame, and any verdict passes.
-            let near_edge = match element {
-                Element::Block { x_m, .. } => x_m,
-                _ => x,
-            };
-            unseen = near_edge >= end;
-            element
+        let Some(Scene {
+            terrain,
+            steep,
+            unseen,
+        }) = scene(&mut rng, mode, i, &config)
+        else {
+            continue;
         };
-        elements.push(element);
-        let terrain = Terrain::new(elements);
         let frame = sim::render(&terrain, &config);
         let mut pipeline = Pipeline::new(config.clone()).expect("a random rig is a valid rig");
         for noisy in [false, true] {
@@ -126,18 +84,7 @@ fn main() {
             };
             past_view += usize::from(unseen);
             if rough && std::env::var("ALL").is_ok() {
-                if let Some(Element::Ramp {
-                    toe_x_m,
-                    gradient_deg,
-                    extent,
-                    ..
-                }) = terrain.elements.last()
-                {
-                    println!(
-                        "ALL #{i} noisy={noisy} drawn {gradient_deg:.1} toe {toe_x_m:.2} end {end:.2} {extent:?} cam={} -> {:?} measured {:?} seen {:?}",
-                        config.camera.width, v.decision, v.feature.map(|f| f.gradient_deg), v.seen_to_m
-                    );
-                }
+                print_measure(i, noisy, end, &terrain, &config, v);
             }
             if !wrong {
                 continue;
@@ -180,6 +127,118 @@ fn main() {
                 "{past_view} frames with the hazard wholly past the view (any verdict passes)"
             );
         }
+    }
+}
+
+/// Which scenes `near_edge` draws (its third argument).
+#[derive(Clone, Copy, PartialEq)]
+enum Mode {
+    /// An impassable hazard where the view starts.
+    Near,
+    /// An impassable hazard up to 1.2 m past where the view starts.
+    Far,
+    /// A climbable ramp whose toe lies in the last 0.35 m of the view.
+    Passable,
+    /// A climbable or steep ramp on rough ground, toe 0.3-0.7 m before the view ends.
+    Rough,
+}
+
+/// One drawn scene: its terrain, whether its ramp is over the slope limit (`Rough`),
+/// and whether its hazard starts past the far end of the view (`Far`).
+struct Scene {
+    terrain: Terrain,
+    steep: bool,
+    unseen: bool,
+}
+
+/// Scene `i` of `mode` on the rig `config`, or `None` for a rig the mode skips (its
+/// view does not end inside the corridor).
+fn scene(rng: &mut impl Rng, mode: Mode, i: usize, config: &Config) -> Option<Scene> {
+    let (near, end) = families::footprint(config);
+    let mut elements = Vec::new();
+    let mut steep = false;
+    let mut unseen = false;
+    let element = if mode == Mode::Rough {
+        if end > config.analysis.corridor_length_m - 0.1 {
+            return None;
+        }
+        steep = rng.gen_bool(0.5);
+        let toe = rng.gen_range(end - 0.7..end - 0.3);
+        let gradient = if steep {
+            rng.gen_range(31.5..40.0)
+        } else {
+            rng.gen_range(12.0..25.0)
+        };
+        let (correlation_m, seed) = (rng.gen_range(0.1..0.2), rng.gen());
+        elements.push(if rng.gen_bool(0.5) {
+            Element::Rough {
+                amplitude_m: 0.025,
+                correlation_m,
+                seed,
+            }
+        } else {
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: correlation_m,
+                seed,
+            }
+        });
+        let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
+        Element::ramp(toe, 0.0, gradient, 0.0, extent)
+    } else if mode == Mode::Passable {
+        // Only rigs whose view ends inside the corridor: else the ramp would rise
+        // out of the corridor, not out of the image.
+        if end > config.analysis.corridor_length_m - 0.1 {
+            return None;
+        }
+        let toe = rng.gen_range(end - 0.35..end - 0.02);
+        let gradient = rng.gen_range(10.0..27.0);
+        let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
+        Element::ramp(toe, 0.0, gradient, 0.0, extent)
+    } else {
+        let x = if mode == Mode::Far {
+            rng.gen_range(near..near + 1.2)
+        } else {
+            rng.gen_range((near - 0.35).max(0.3)..near + 0.12)
+        };
+        let element = impassable(rng, i, x, config);
+        // With `far`, the hazard may start past what the rig sees of flat ground
+        // at all: nothing of it is in the frame, and any verdict passes.
+        let near_edge = match element {
+            Element::Block { x_m, .. } => x_m,
+            _ => x,
+        };
+        unseen = near_edge >= end;
+        element
+    };
+    elements.push(element);
+    Some(Scene {
+        terrain: Terrain::new(elements),
+        steep,
+        unseen,
+    })
+}
+
+/// Prints a rough-ramp frame's drawn and measured gradient (`ALL=1`).
+fn print_measure(
+    i: usize,
+    noisy: bool,
+    end: f64,
+    terrain: &Terrain,
+    config: &Config,
+    v: &rover_terrain::Verdict,
+) {
+    if let Some(Element::Ramp {
+        toe_x_m,
+        gradient_deg,
+        extent,
+        ..
+    }) = terrain.elements.last()
+    {
+        println!(
+            "ALL #{i} noisy={noisy} drawn {gradient_deg:.1} toe {toe_x_m:.2} end {end:.2} {extent:?} cam={} -> {:?} measured {:?} seen {:?}",
+            config.camera.width, v.decision, v.feature.map(|f| f.gradient_deg), v.seen_to_m
+        );
     }
 }
 
