@@ -41,6 +41,8 @@ fn main() {
         .ok()
         .map(|v| v.split(',').filter_map(|s| s.parse().ok()).collect());
     let random_rig = args.get(4).map(String::as_str) == Some("random");
+    // FLYING=FRACTION: mix that fraction of the noisy frames' edge pixels too.
+    let flying: Option<f64> = std::env::var("FLYING").ok().and_then(|v| v.parse().ok());
     // `families` mode: just this family (its index in `families::Family::ALL`).
     let family = args.get(5).and_then(|s| s.parse::<usize>().ok());
     let (mut failures, mut total, mut false_go, mut excused) = (0, 0, 0, (0, 0));
@@ -59,8 +61,7 @@ fn main() {
                     ..Default::default()
                 }
                 .apply(&mut f, config.camera.hfov_deg);
-                // FLYING=FRACTION: mix that fraction of the edge pixels too.
-                if let Some(fraction) = std::env::var("FLYING").ok().and_then(|v| v.parse().ok()) {
+                if let Some(fraction) = flying {
                     sim::FlyingPixels {
                         seed: seed * 1000 + i as u64,
                         fraction,
