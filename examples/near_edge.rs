@@ -48,6 +48,7 @@ fn main() {
         mode == Mode::Rough,
     );
     let (mut steep_go, mut climbable_not_go, mut past_view) = (0, 0, 0);
+    let mut steep_frames = 0;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let (mut total, mut flagged) = (0, 0);
     for i in 0..n {
@@ -83,6 +84,7 @@ fn main() {
                 go != passable && !unseen
             };
             past_view += usize::from(unseen);
+            steep_frames += usize::from(steep);
             if rough && std::env::var("ALL").is_ok() {
                 print_measure(i, noisy, end, &terrain, &config, v);
             }
@@ -117,7 +119,7 @@ fn main() {
     }
     if rough {
         println!(
-            "{total} frames, {steep_go} go on a steep rough ramp, {climbable_not_go} not go on a climbable one"
+            "{total} frames ({steep_frames} steep), {steep_go} go on a steep rough ramp, {climbable_not_go} not go on a climbable one"
         );
     } else {
         let counted = if passable { "not go" } else { "go" };
@@ -154,38 +156,17 @@ struct Scene {
 /// Scene `i` of `mode` on the rig `config`, or `None` for a rig the mode skips (its
 /// view does not end inside the corridor).
 fn scene(rng: &mut impl Rng, mode: Mode, i: usize, config: &Config) -> Option<Scene> {
-    let (near, end) = families::footprint(config);
-    let mut elements = Vec::new();
-    let mut steep = false;
-    let mut unseen = false;
-    let element = if mode == Mode::Rough {
-        if end > config.analysis.corridor_length_m - 0.1 {
-            return None;
-        }
-        steep = rng.gen_bool(0.5);
-        let toe = rng.gen_range(end - 0.7..end - 0.3);
-        let gradient = if steep {
-            rng.gen_range(31.5..40.0)
-        } else {
-            rng.gen_range(12.0..25.0)
-        };
-        let (correlation_m, seed) = (rng.gen_range(0.1..0.2), rng.gen());
-        elements.push(if rng.gen_bool(0.5) {
-            Element::Rough {
-                amplitude_m: 0.025,
-                correlation_m,
-                seed,
-            }
-        } else {
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: correlation_m,
-                seed,
-            }
+    if mode == Mode::Rough {
+        let (terrain, steep) = families::rough_ramp_at_view_end(rng, config)?;
+        return Some(Scene {
+            terrain,
+            steep,
+            unseen: false,
         });
-        let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
-        Element::ramp(toe, 0.0, gradient, 0.0, extent)
-    } else if mode == Mode::Passable {
+    }
+    let (near, end) = families::footprint(config);
+    let mut unseen = false;
+    let element = if mode == Mode::Passable {
         // Only rigs whose view ends inside the corridor: else the ramp would rise
         // out of the corridor, not out of the image.
         if end > config.analysis.corridor_length_m - 0.1 {
@@ -211,10 +192,9 @@ fn scene(rng: &mut impl Rng, mode: Mode, i: usize, config: &Config) -> Option<Sc
         unseen = near_edge >= end;
         element
     };
-    elements.push(element);
     Some(Scene {
-        terrain: Terrain::new(elements),
-        steep,
+        terrain: Terrain::new(vec![element]),
+        steep: false,
         unseen,
     })
 }

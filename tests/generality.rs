@@ -1535,3 +1535,50 @@ fn a_rough_ramp_rising_out_of_view_is_judged_by_its_line_and_a_steep_one_still_s
         }
     }
 }
+
+#[test]
+fn a_steep_rough_ramp_the_view_ends_on_is_never_go_and_most_climbable_ones_are() {
+    // Random rigs whose view ends inside the corridor, a ramp on rough ground with its
+    // toe 0.3-0.7 m before that end (`near_edge -- 70 42 rough` draws the same). Seen
+    // for a decimetre or three, the bumps tilt the face by several degrees either
+    // way: two ramps over 32° here read under 30° and were go. The gradient judged carries
+    // that uncertainty, which stops the steep ones and some climbable ones read near
+    // the limit; most climbable ones stay go.
+    use rand::SeedableRng;
+    use rover_terrain::sim::families;
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(42);
+    let (mut steep, mut climbable, mut climbable_go) = (0, 0, 0);
+    for i in 0..70 {
+        let c = families::Rig::random(&mut rng).config;
+        let Some((terrain, is_steep)) = families::rough_ramp_at_view_end(&mut rng, &c) else {
+            continue;
+        };
+        let clean = rover_terrain::sim::render(&terrain, &c);
+        let mut noisy = clean.clone();
+        rover_terrain::sim::KinectNoise {
+            seed: 42_000 + i,
+            ..Default::default()
+        }
+        .apply(&mut noisy, c.camera.hfov_deg);
+        let mut pipeline = rover_terrain::Pipeline::new(c.clone()).unwrap();
+        for frame in [&clean, &noisy] {
+            let v = pipeline.process(frame).unwrap();
+            let go = v.decision == Decision::Go;
+            if is_steep {
+                steep += 1;
+                assert!(!go, "#{i}: {terrain:?} on {:?}: {:?}", c.mount, v.feature);
+            } else {
+                climbable += 1;
+                climbable_go += usize::from(go);
+            }
+        }
+    }
+    assert!(
+        steep >= 6 && climbable >= 6,
+        "{steep} steep, {climbable} climbable"
+    );
+    assert!(
+        4 * climbable_go >= 3 * climbable,
+        "{climbable_go} of {climbable} climbable frames go"
+    );
+}

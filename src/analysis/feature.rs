@@ -62,6 +62,52 @@ fn chosen(region: Region, use_left: bool, use_right: bool) -> bool {
 /// (the threshold over the gradient), not the flat before a low step.
 const TOE_BAND_CELLS: usize = 3;
 
+/// A fitted face: its plane and how much of it the fit saw.
+#[derive(Debug, Clone, Copy)]
+struct Face {
+    plane: Plane,
+    /// How far past the toe line the farthest cell of the fit lies, along the
+    /// gradient, metres.
+    run_m: f64,
+    /// The cells' spread about the plane (one standard deviation, robust), metres.
+    spread_m: f64,
+    /// Whether the face runs on to where the view ends: past some cell of the fit,
+    /// its strip shows no more ground below the sensor's horizon within
+    /// [`VIEW_END_CELLS`]. A ramp rising out of the image does; a stone or a capped
+    /// ramp seen whole, with ground beyond it, does not.
+    to_view_end: bool,
+}
+
+/// How many cells past a face's last cell in a strip ground seen below the horizon
+/// shows that the face ends inside the view.
+const VIEW_END_CELLS: usize = 2;
+
+impl Face {
+    /// The face measured over `use_cell`'s cells.
+    fn measured(f: &Frame, use_cell: &[bool], plane: Plane) -> Face {
+        let s = f.spec;
+        let slope = plane.a.hypot(plane.b).max(1e-9);
+        let mut run_m = 0.0f64;
+        let mut spread = Spread::default();
+        let mut to_view_end = false;
+        for (c, cell) in f.cells.iter().enumerate().filter(|&(c, _)| use_cell[c]) {
+            let on_plane = plane.z(f64::from(cell.x), f64::from(cell.y));
+            run_m = run_m.max(on_plane.abs() / slope);
+            spread.add(f64::from(height(f, c)) - on_plane);
+            let (ix, iy) = (c / s.ny, c % s.ny);
+            to_view_end |= !(ix + VIEW_END_CELLS + 1..s.nx)
+                .map(|k| s.cell(k, iy))
+                .any(|k| f.seen[k] && !f.past[k]);
+        }
+        Face {
+            plane,
+            run_m,
+            spread_m: spread.sigma().unwrap_or(SPREAD_BINS as f64 / 1000.0),
+            to_view_end,
+        }
+    }
+}
+
 /// Step 3: fit the face of the chosen tracks as a plane (see the module doc).
 fn fit_face(
     f: &Frame,
@@ -70,7 +116,7 @@ fn fit_face(
     dir: Dir,
     use_left: bool,
     use_right: bool,
-) -> Option<Plane> {
+) -> Option<Face> {
     let s = f.spec;
     let threshold = f.cfg.analysis.rise_threshold_m as f32;
     let chosen = |iy: usize| chosen(f.region[iy], use_left, use_right);
@@ -155,7 +201,7 @@ fn fit_face(
             break;
         }
     }
-    plane
+    plane.map(|p| Face::measured(f, use_cell, p))
 }
 
 /// One fit of [`fit_face`]: the plane through the cells in `use_cell` and the
@@ -329,13 +375,26 @@ impl Affected {
 
 /// The feature of a passable corridor: onsets, affected tracks, the face's plane,
 /// its measures and the workcase they make (see the module doc).
-pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) -> Feature {
+///
+/// Also returns how uncertain the gradient is on rough ground (one standard deviation,
+/// degrees; see [`gradient_sd_deg`]) when the face runs on to where the view ends, so
+/// that only its first stretch is seen; else (the face seen whole, flat ground, a
+/// step) 0.
+pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) -> (Feature, f64) {
     find_onsets(f, onset);
     let Some(affected) = affected_tracks(f, onset) else {
-        return Feature::FLAT;
+        return (Feature::FLAT, 0.0);
     };
-    let (affected, plane) = one_face_or_nearer(f, onset, use_cell, affected);
+    let (affected, face) = one_face_or_nearer(f, onset, use_cell, affected);
+    let plane = face.map(|face| face.plane);
     let (at_ref, gradient, alpha, nearest) = measures(f, onset, plane, affected);
+    let sd = match face {
+        Some(face) if face.to_view_end && gradient.abs() < 90.0 => {
+            let ground = ground_spread(f, onset, affected, &face.plane).unwrap_or(face.spread_m);
+            gradient_sd_deg(gradient, ground, face.run_m)
+        }
+        _ => 0.0,
+    };
     // A face met almost side-on (a side slope) has its toe line meet the reference
     // line behind the rover, or far past the corridor, or never: its distance is then
     // where the toe line is nearest within the affected tracks, and 0 for a track
@@ -351,13 +410,78 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
     let diagonal = alpha.abs() >= f.cfg.analysis.diagonal_min_deg;
     let workcase = workcase(affected, diagonal);
     let vs = f64::from(f.spec.voxel_m);
-    Feature {
+    let feature = Feature {
         workcase,
         toe_seen: distance >= nearest_seen(f, affected) - vs,
         distance_m: Some(distance as f32),
         gradient_deg: Some(gradient as f32),
         alpha_deg: matches!(workcase, 4 | 6 | 7).then_some(alpha as f32),
+    };
+    (feature, sd)
+}
+
+/// How far a face's measured gradient (`gradient_deg`) may be off on rough ground,
+/// one standard deviation, degrees, for ground whose heights spread by `ground_m`
+/// (metres, one standard deviation) and a face seen `run_m` metres past its toe line:
+/// the slope's error is `rough / √(max(run, ROUGH_MIN_RUN_M) · ROUGH_TILT_SCALE_M)`,
+/// where `rough = √(ground² − FACE_NOISE_M²)` leaves out the cells' own noise.
+///
+/// This is measured, not derived: on the rough ground (±2.5 cm, 10-20 cm
+/// correlation, ~1.1 cm spread) the face fit read 2.0-2.7° RMS off for runs of
+/// 0.15-0.5 m, 1.8° for 0.5-0.8 m and 5.4° (up to 9°) under 0.15 m (the 226 go frames of
+/// `near_edge -- 400 SEED rough`, seeds 30-34, `ALL=1`): far flatter in the run than
+/// independent bumps would give (`L^-1.5`), since a plane fitted to a short face takes
+/// the tilt of the one or two bumps on it. The scale matches those RMS figures. On
+/// smooth ground (spread of millimetres) it is a fraction of a degree.
+fn gradient_sd_deg(gradient_deg: f64, ground_m: f64, run_m: f64) -> f64 {
+    // The cells' own noise (a millimetre bin, the sensor's noise over a cell's points)
+    // tilts nothing: only the spread past it is the ground's.
+    let rough = (ground_m * ground_m - FACE_NOISE_M * FACE_NOISE_M)
+        .max(0.0)
+        .sqrt();
+    let slope_sd = rough / (run_m.max(ROUGH_MIN_RUN_M) * ROUGH_TILT_SCALE_M).sqrt();
+    // d(atan s)/ds = cos²(gradient).
+    gradient_deg.to_radians().cos().powi(2) * slope_sd.to_degrees()
+}
+
+/// Scale of [`gradient_sd_deg`]'s run, metres.
+const ROUGH_TILT_SCALE_M: f64 = 0.16;
+/// Shorter runs than this count as this long in [`gradient_sd_deg`], metres: two
+/// cells.
+const ROUGH_MIN_RUN_M: f64 = 0.1;
+
+/// Least ground cells before the onsets that [`ground_spread`] judges from.
+const GROUND_MIN_CELLS: u32 = 12;
+
+/// The spread of the ground before the face `plane`, in the affected strips before
+/// their onsets and wholly before the toe line (the face's own foot, under the
+/// onset's threshold, is not ground): one standard deviation of the heights
+/// (robust: 1.4826 × the median absolute height, so a stone or two do not count),
+/// metres; `None` with fewer than [`GROUND_MIN_CELLS`] such cells seen (the toe
+/// below the image).
+fn ground_spread(f: &Frame, onset: &[Option<Onset>], a: Affected, plane: &Plane) -> Option<f64> {
+    let s = f.spec;
+    let sign = if a.dir == Dir::Up { 1.0 } else { -1.0 };
+    let half = 0.5 * s.voxel_m;
+    let before_toe = |ix: usize, iy: usize| {
+        let (x, y) = (s.x_centre(ix) + half, s.y_centre(iy));
+        [y - half, y + half]
+            .iter()
+            .all(|&y| sign * plane.z(f64::from(x), f64::from(y)) <= 0.0)
+    };
+    let mut spread = Spread::default();
+    for iy in (0..s.ny).filter(|&iy| a.chosen(f, iy)) {
+        let Some(o) = onset[iy] else { continue };
+        for ix in (0..o.ix).filter(|&ix| before_toe(ix, iy)) {
+            let c = s.cell(ix, iy);
+            if f.seen[c] {
+                spread.add(f64::from(height(f, c)));
+            }
+        }
     }
+    (spread.n >= GROUND_MIN_CELLS)
+        .then(|| spread.sigma())
+        .flatten()
 }
 
 /// Step 1: in each track strip, the first seen cell that rises (or falls) past the
@@ -452,21 +576,21 @@ fn one_face_or_nearer(
     onset: &[Option<Onset>],
     use_cell: &mut [bool],
     mut a: Affected,
-) -> (Affected, Option<Plane>) {
+) -> (Affected, Option<Face>) {
     let both = fit_face(f, onset, use_cell, a.dir, a.left, a.right);
     let Some(both) = both.filter(|_| a.left && a.right) else {
         return (a, both);
     };
     let tc = f.cfg.rover.track_centre_m();
     let mut one = |left: bool| {
-        let p = fit_face(f, onset, use_cell, a.dir, left, !left)?;
-        let (own, n) = residuals(f, use_cell, &p);
-        let (joint, _) = residuals(f, use_cell, &both);
-        Some((p, own, joint, n))
+        let face = fit_face(f, onset, use_cell, a.dir, left, !left)?;
+        let (own, n) = residuals(f, use_cell, &face.plane);
+        let (joint, _) = residuals(f, use_cell, &both.plane);
+        Some((face, own, joint, n))
     };
     if let (Some(l), Some(r)) = (one(true), one(false)) {
         if !same_face(l.1 + r.1, l.2 + r.2, l.3 + r.3) {
-            return if l.0.toe_x(tc) <= r.0.toe_x(-tc) {
+            return if l.0.plane.toe_x(tc) <= r.0.plane.toe_x(-tc) {
                 a.right = false;
                 (a, Some(l.0))
             } else {
@@ -657,9 +781,43 @@ mod tests {
         let (a, plane) = one_face_or_nearer(&f, &onset, &mut use_cell, both);
         assert!(a.left && !a.right, "{a:?}");
         // The face returned is the left ramp's: toe 1.0 m, 15°.
-        let plane = plane.unwrap();
+        let plane = plane.unwrap().plane;
         assert!((plane.toe_x(0.45) - 1.0).abs() < 0.02, "{plane:?}");
         assert!((plane.gradient_deg() - 15.0).abs() < 0.5, "{plane:?}");
+    }
+
+    #[test]
+    fn a_face_running_out_of_view_is_told_from_one_seen_whole() {
+        // An 18° ramp from 1.2 m rises out of the default camera's image at about
+        // 2.5 m; capped 10 cm high, its top and the flat beyond are seen.
+        for (cap_m, to_view_end) in [(None, true), (Some(0.1), false)] {
+            let ramp = Element::ramp(1.2, 0.0, 18.0, 0.0, Extent::Full).capped(cap_m);
+            let p = analysed(vec![ramp]);
+            let f = p.analyzer().frame(p.grid());
+            let mut onset = vec![None; f.spec.ny];
+            let mut use_cell = vec![false; f.spec.cell_count()];
+            find_onsets(&f, &mut onset);
+            let face = fit_face(&f, &onset, &mut use_cell, Dir::Up, true, true).unwrap();
+            assert_eq!(face.to_view_end, to_view_end, "cap {cap_m:?}: {face:?}");
+        }
+    }
+
+    #[test]
+    fn the_gradient_uncertainty_follows_its_formula_by_hand() {
+        // σ = 5 mm, 4 mm of it past the 3 mm noise floor, over a run of 0.16 m: a
+        // slope error of 0.004 / √(0.16 · 0.16) = 0.025 rad, 1.432° on level ground;
+        // cos²(45°) halves it at 45°.
+        assert!((gradient_sd_deg(0.0, 0.005, 0.16) - 1.432).abs() < 1e-3);
+        assert!((gradient_sd_deg(45.0, 0.005, 0.16) - 0.716).abs() < 1e-3);
+        // Four times the run, half the error; under 0.1 m, as 0.1 m.
+        let long = gradient_sd_deg(20.0, 0.011, 0.64);
+        assert!((2.0 * long - gradient_sd_deg(20.0, 0.011, 0.16)).abs() < 1e-9);
+        assert_eq!(
+            gradient_sd_deg(20.0, 0.011, 0.02),
+            gradient_sd_deg(20.0, 0.011, 0.1)
+        );
+        // Smooth ground, or the cells' noise alone: nothing.
+        assert_eq!(gradient_sd_deg(25.0, 0.003, 0.2), 0.0);
     }
 
     #[test]
@@ -669,8 +827,12 @@ mod tests {
         let mut onset = vec![None; f.spec.ny];
         let mut use_cell = vec![false; f.spec.cell_count()];
         find_onsets(&f, &mut onset);
-        let plane = fit_face(&f, &onset, &mut use_cell, Dir::Up, true, true).unwrap();
+        let face = fit_face(&f, &onset, &mut use_cell, Dir::Up, true, true).unwrap();
+        let plane = face.plane;
         assert!((plane.gradient_deg() - 18.0).abs() < 0.3, "{plane:?}");
+        // Clean: the cells lie on the plane within a few millimetres, and the fit
+        // reaches well past the toe.
+        assert!(face.spread_m < 0.004 && face.run_m > 0.5, "{face:?}");
         assert!((plane.toe_x(0.0) - 1.2).abs() < 0.01, "{plane:?}");
         assert!(((plane.b / plane.a).atan().to_degrees() - 20.0).abs() < 0.5);
     }

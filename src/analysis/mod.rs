@@ -324,9 +324,10 @@ impl Analyzer {
         let too_little = seen_of_visible < frame.cfg.analysis.min_seen_fraction as f32;
         decide(verdict, too_little, nearest_unseen);
         if verdict.decision == Decision::Go {
-            let measured = feature::analyse(&frame, &mut scratch.onset, &mut scratch.use_cell);
+            let (measured, sd_deg) =
+                feature::analyse(&frame, &mut scratch.onset, &mut scratch.use_cell);
             verdict.feature = Some(measured);
-            if too_steep_face(&measured, &frame.cfg.rover, verdict) {
+            if too_steep_face(&measured, sd_deg, &frame.cfg.rover, verdict) {
                 verdict.feature = None;
                 decide(verdict, false, nearest_unseen);
             }
@@ -423,11 +424,22 @@ impl Analyzer {
 /// 33°, the rise too short for the steep-exit test), and on a steep face met
 /// obliquely (a 35° face whose toe line runs at 54° to the axle climbs 22° along the
 /// strips). The safe reading wins.
-fn too_steep_face(measured: &Feature, rover: &RoverConfig, verdict: &mut Verdict) -> bool {
+///
+/// On rough ground a face the view ends on, seen briefly, reads several degrees off (a 32° ramp seen for
+/// 0.35 m past its toe read 27°), so the gradient judged is the measured one plus
+/// [`FACE_MARGIN_SDS`] times its uncertainty `sd_deg` (degrees, one standard
+/// deviation, from the ground's roughness and the run seen: `feature::analyse`).
+/// On smooth ground, or a face seen for a wheelbase, that adds a fraction of a degree.
+fn too_steep_face(
+    measured: &Feature,
+    sd_deg: f64,
+    rover: &RoverConfig,
+    verdict: &mut Verdict,
+) -> bool {
     let (Some(gradient), Some(distance_m)) = (measured.gradient_deg, measured.distance_m) else {
         return false;
     };
-    let steep = f64::from(gradient.abs());
+    let steep = f64::from(gradient.abs()) + FACE_MARGIN_SDS * sd_deg;
     if steep <= rover.max_slope_deg || steep >= 90.0 - 1e-3 {
         return false;
     }
@@ -457,6 +469,10 @@ fn too_steep_face(measured: &Feature, rover: &RoverConfig, verdict: &mut Verdict
     }
     true
 }
+
+/// How many standard deviations of its gradient's uncertainty a face must stay under
+/// the slope limit to be go.
+const FACE_MARGIN_SDS: f64 = 2.0;
 
 /// The decision from the hazards found: stop for any but unknown ground; unknown
 /// for unknown ground or too little seen (then an `unknown` hazard at the nearest

@@ -210,6 +210,45 @@ pub fn footprint(config: &Config) -> (f64, f64) {
     }
 }
 
+/// A ramp on rough ground whose toe lies 0.3-0.7 m before the far end of what
+/// `config`'s rig sees of flat ground (`footprint`), so that the view ends on its
+/// first decimetres: half the time climbable (12-25°), half steeper than the default
+/// rover climbs (31.5-40°); under the left track, the right one or both; on plane-wave
+/// or value-noise ground (±2.5 cm, correlation 10-20 cm). Returns the terrain and
+/// whether the ramp is the steep kind; `None` (drawing nothing) when the rig sees
+/// flat ground to within 0.1 m of the corridor's end, where the ramp would leave the
+/// corridor before the image.
+pub fn rough_ramp_at_view_end<R: Rng>(rng: &mut R, config: &Config) -> Option<(Terrain, bool)> {
+    let (_, end) = footprint(config);
+    if end > config.analysis.corridor_length_m - 0.1 {
+        return None;
+    }
+    let steep = rng.gen_bool(0.5);
+    let toe = rng.gen_range(end - 0.7..end - 0.3);
+    let gradient = if steep {
+        rng.gen_range(31.5..40.0)
+    } else {
+        rng.gen_range(12.0..25.0)
+    };
+    let (correlation_m, seed) = (rng.gen_range(0.1..0.2), rng.gen());
+    let ground = if rng.gen_bool(0.5) {
+        Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m,
+            seed,
+        }
+    } else {
+        Element::Lumpy {
+            amplitude_m: 0.025,
+            spacing_m: correlation_m,
+            seed,
+        }
+    };
+    let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
+    let ramp = Element::ramp(toe, 0.0, gradient, 0.0, extent);
+    Some((Terrain::new(vec![ground, ramp]), steep))
+}
+
 /// The least angle, degrees, at which the camera's lines of sight meet `terrain`'s
 /// surface under the wheel tracks (|y| from the belly's edge to the track's outer
 /// edge, 1 cm clear of both) from the rover's front to the corridor's end, over the
