@@ -58,7 +58,7 @@ fn main() {
             terrain,
             steep,
             unseen,
-        }) = scene(&mut rng, mode, i, &config)
+        }) = scene(&mut rng, mode, i, &config, (near, end))
         else {
             continue;
         };
@@ -153,9 +153,16 @@ struct Scene {
     unseen: bool,
 }
 
-/// Scene `i` of `mode` on the rig `config`, or `None` for a rig the mode skips (its
-/// view does not end inside the corridor).
-fn scene(rng: &mut impl Rng, mode: Mode, i: usize, config: &Config) -> Option<Scene> {
+/// Scene `i` of `mode` on the rig `config`, which sees flat ground from `near` to
+/// `end` metres, or `None` for a rig the mode skips (its view does not end inside the
+/// corridor).
+fn scene(
+    rng: &mut impl Rng,
+    mode: Mode,
+    i: usize,
+    config: &Config,
+    (near, end): (f64, f64),
+) -> Option<Scene> {
     if mode == Mode::Rough {
         let (terrain, steep) = families::rough_ramp_at_view_end(rng, config)?;
         return Some(Scene {
@@ -164,18 +171,14 @@ fn scene(rng: &mut impl Rng, mode: Mode, i: usize, config: &Config) -> Option<Sc
             unseen: false,
         });
     }
-    let (near, end) = families::footprint(config);
-    let mut unseen = false;
-    let element = if mode == Mode::Passable {
-        // Only rigs whose view ends inside the corridor: else the ramp would rise
-        // out of the corridor, not out of the image.
-        if end > config.analysis.corridor_length_m - 0.1 {
+    let (element, unseen) = if mode == Mode::Passable {
+        if !families::view_ends_in_corridor(end, config) {
             return None;
         }
         let toe = rng.gen_range(end - 0.35..end - 0.02);
         let gradient = rng.gen_range(10.0..27.0);
         let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
-        Element::ramp(toe, 0.0, gradient, 0.0, extent)
+        (Element::ramp(toe, 0.0, gradient, 0.0, extent), false)
     } else {
         let x = if mode == Mode::Far {
             rng.gen_range(near..near + 1.2)
@@ -189,8 +192,7 @@ fn scene(rng: &mut impl Rng, mode: Mode, i: usize, config: &Config) -> Option<Sc
             Element::Block { x_m, .. } => x_m,
             _ => x,
         };
-        unseen = near_edge >= end;
-        element
+        (element, near_edge >= end)
     };
     Some(Scene {
         terrain: Terrain::new(vec![element]),

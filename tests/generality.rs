@@ -1541,9 +1541,9 @@ fn a_steep_rough_ramp_the_view_ends_on_is_never_go_and_most_climbable_ones_are()
     // Random rigs whose view ends inside the corridor, a ramp on rough ground with its
     // toe 0.3-0.7 m before that end (`near_edge -- 70 42 rough` draws the same). Seen
     // for a decimetre or three, the bumps tilt the face by several degrees either
-    // way: two ramps over 32° here read under 30° and were go. The gradient judged carries
-    // that uncertainty, which stops the steep ones and some climbable ones read near
-    // the limit; most climbable ones stay go.
+    // way: two ramps over 32° here read under 30° and were go. The gradient judged
+    // carries that uncertainty, which stops the steep ones and some climbable ones
+    // read near the limit; most climbable ones stay go.
     use rand::SeedableRng;
     use rover_terrain::sim::families;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(42);

@@ -425,11 +425,12 @@ impl Analyzer {
 /// obliquely (a 35° face whose toe line runs at 54° to the axle climbs 22° along the
 /// strips). The safe reading wins.
 ///
-/// On rough ground a face the view ends on, seen briefly, reads several degrees off (a 32° ramp seen for
-/// 0.35 m past its toe read 27°), so the gradient judged is the measured one plus
-/// [`FACE_MARGIN_SDS`] times its uncertainty `sd_deg` (degrees, one standard
-/// deviation, from the ground's roughness and the run seen: `feature::analyse`).
-/// On smooth ground, or a face seen for a wheelbase, that adds a fraction of a degree.
+/// On rough ground a face the view ends on, seen briefly, reads several degrees off
+/// (a 32° ramp seen for 0.35 m past its toe read 27°), so the gradient judged is the
+/// measured one plus [`FACE_MARGIN_SDS`] times its uncertainty `sd_deg` (degrees, one
+/// standard deviation, from the ground's roughness and the run seen:
+/// `feature::analyse`). On smooth ground, or a face seen for a wheelbase, that adds a
+/// fraction of a degree.
 fn too_steep_face(
     measured: &Feature,
     sd_deg: f64,

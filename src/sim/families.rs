@@ -210,6 +210,13 @@ pub fn footprint(config: &Config) -> (f64, f64) {
     }
 }
 
+/// Whether a rig that sees flat ground up to `end` metres (`footprint`) stops seeing
+/// it at least 0.1 m before the corridor's end: a ramp placed there rises out of the
+/// image, not out of the corridor.
+pub fn view_ends_in_corridor(end: f64, config: &Config) -> bool {
+    end <= config.analysis.corridor_length_m - 0.1
+}
+
 /// A ramp on rough ground whose toe lies 0.3-0.7 m before the far end of what
 /// `config`'s rig sees of flat ground (`footprint`), so that the view ends on its
 /// first decimetres: half the time climbable (12-25°), half steeper than the default
@@ -220,7 +227,7 @@ pub fn footprint(config: &Config) -> (f64, f64) {
 /// corridor before the image.
 pub fn rough_ramp_at_view_end<R: Rng>(rng: &mut R, config: &Config) -> Option<(Terrain, bool)> {
     let (_, end) = footprint(config);
-    if end > config.analysis.corridor_length_m - 0.1 {
+    if !view_ends_in_corridor(end, config) {
         return None;
     }
     let steep = rng.gen_bool(0.5);

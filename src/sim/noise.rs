@@ -125,14 +125,12 @@ impl FlyingPixels {
                 .flatten()
                 .map(|j| f64::from(before[j]))
                 .filter(|&d| d > 0.0 && (d - own).abs() > jump)
-                .fold(None, |m: Option<f64>, d| {
-                    Some(m.map_or(d, |m| {
-                        if (d - own).abs() > (m - own).abs() {
-                            d
-                        } else {
-                            m
-                        }
-                    }))
+                .reduce(|m, d| {
+                    if (d - own).abs() > (m - own).abs() {
+                        d
+                    } else {
+                        m
+                    }
                 });
             if let Some(other) = far {
                 *p = (own + t * (other - own)).round() as u16;
