@@ -1331,10 +1331,20 @@ fn judge_gap(
             // Nothing seen beyond: a drop-off, unless the ground before the gap,
             // continued at its slope, would be hidden all along by something seen
             // (ground falling away beyond an edge beside the strip: a sideways shadow),
-            // or fell between the camera's rows.
-            let hidden = unseen
-                .clone()
-                .all(|j| super::visibility::explained(f, j, iy, predicted(s.x_centre(j))));
+            // or fell between the camera's rows. Continued from the line through the
+            // recent cells too: a last cell of a few stray points (mixed pixels off the
+            // edge above) stands above the ground, and ground continued from it would
+            // be in view.
+            let hidden_at = |z: &dyn Fn(f32) -> f32| {
+                unseen
+                    .clone()
+                    .all(|j| super::visibility::explained(f, j, iy, z(s.x_centre(j))))
+            };
+            let on_line = before.line().map(|(kl, _, zl)| {
+                let kl = kl.clamp(-tan_max, tan_max);
+                move |x: f32| zl + kl * (x - xb)
+            });
+            let hidden = hidden_at(&predicted) || on_line.is_some_and(|z| hidden_at(&z));
             (!hidden && !bumps() && !sampled_out()).then_some(HazardKind::DropOff)
         }
         Some((xa, za)) if za < zb - r && za < predicted(xa) - r && below_line(xa, za) => {
