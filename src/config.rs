@@ -277,6 +277,11 @@ pub struct AnalysisConfig {
     pub min_seen_fraction: f64,
     /// Unseen cells in a row along a strip that make a gap (drop-off or unknown).
     pub gap_min_cells: u32,
+    /// A depth pixel whose two neighbours along a row or column lie within this angle
+    /// of its line of sight, one in front and one behind, is a mixed ("flying")
+    /// pixel at a depth edge and is not binned ([`crate::mixed_pixels`]), degrees in
+    /// [0, 45); 0 bins every pixel.
+    pub mixed_pixel_angle_deg: f64,
 }
 
 impl Default for CameraConfig {
@@ -340,6 +345,11 @@ impl Default for AnalysisConfig {
             min_points_per_cell: 3,
             min_seen_fraction: 0.5,
             gap_min_cells: 2,
+            // Mixed pixels at an edge lie within about 1° of the line of sight; ground
+            // seen from 0.5 m at 3.5 m meets it at 8°, depth noise of a few
+            // quantisation steps is a surface at 15° or more. At 3° and more, rough
+            // descents seen at grazing incidence lost enough points to show gaps.
+            mixed_pixel_angle_deg: 2.5,
         }
     }
 }
@@ -689,6 +699,13 @@ impl AnalysisConfig {
         if a.gap_min_cells == 0 {
             return Err(("analysis.gap_min_cells", "must be at least 1".into()));
         }
+        finite("analysis.mixed_pixel_angle_deg", a.mixed_pixel_angle_deg)?;
+        if !(0.0..45.0).contains(&a.mixed_pixel_angle_deg) {
+            return Err((
+                "analysis.mixed_pixel_angle_deg",
+                format!("must be within 0..45, got {}", a.mixed_pixel_angle_deg),
+            ));
+        }
         Ok(())
     }
 }
@@ -807,6 +824,12 @@ mod tests {
         assert!(e.contains("voxels"), "{e}");
         let e = err("[analysis]\nmin_seen_fraction = 1.5\n");
         assert!(e.contains("analysis.min_seen_fraction"), "{e}");
+        for bad in ["45", "-1", "nan"] {
+            let e = err(&format!("[analysis]\nmixed_pixel_angle_deg = {bad}\n"));
+            assert!(e.contains("analysis.mixed_pixel_angle_deg"), "{bad}: {e}");
+        }
+        let off = Config::from_toml("[analysis]\nmixed_pixel_angle_deg = 0\n", "x").unwrap();
+        assert_eq!(off.analysis.mixed_pixel_angle_deg, 0.0);
         let e = err("[camera]\nhfov_deg = nan\n");
         assert!(e.contains("finite"), "{e}");
         let e = err("[camera]\nsource = \"webcam:0\"\n");

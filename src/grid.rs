@@ -10,6 +10,7 @@
 //! the depth image with the [`Projector`]'s tables, no intermediate cloud.
 
 use crate::config::Config;
+use crate::mixed_pixels::MixedPixels;
 use crate::projection::Projector;
 
 /// The grid's geometry.
@@ -112,6 +113,9 @@ pub struct BinStats {
     pub points_in: u32,
     /// Of those, the points that fell inside the grid.
     pub points_binned: u32,
+    /// Points inside the grid dropped as mixed pixels at a depth edge
+    /// ([`MixedPixels`]); not in `points_binned`.
+    pub points_mixed: u32,
 }
 
 /// One ground cell: the points of every voxel in a column.
@@ -216,13 +220,95 @@ struct RowParams {
     max_mm: u16,
 }
 
+/// Mark in `cand` the pixels of a row that may be mixed ([`MixedPixels`]): returned,
+/// with a returned neighbour (`near`) more than the least jump at the pixel's depth
+/// away (`jump`: per mm of depth, the lesser of the row's and the column's, 16.16
+/// fixed point, rounded down: never more). A mixed pixel always is one;
+/// [`MixedPixels::is_mixed`] decides. Returns whether any is. Branch-free in 16-bit
+/// lanes, so that it vectorises like [`index_row`].
+#[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
+fn mark_candidates(pixels: &[u16], near: &Neighbours, jump: u16, cand: &mut [u16]) -> bool {
+    let n = pixels
+        .len()
+        .min(cand.len())
+        .min(near.left.len())
+        .min(near.right.len());
+    let n = n.min(near.above.len()).min(near.below.len());
+    let (pixels, cand) = (&pixels[..n], &mut cand[..n]);
+    let (left, right) = (&near.left[..n], &near.right[..n]);
+    let (above, below) = (&near.above[..n], &near.below[..n]);
+    let mut any = 0u16;
+    for k in 0..n {
+        let d = pixels[k];
+        let t = ((u32::from(d) * u32::from(jump)) >> 16) as u16;
+        // The farthest and the nearest returned neighbour (0 wraps to the top).
+        let far = left[k].max(right[k]).max(above[k]).max(below[k]);
+        let z = |x: u16| x.wrapping_sub(1);
+        let near_1 = z(left[k])
+            .min(z(right[k]))
+            .min(z(above[k]))
+            .min(z(below[k]));
+        let jumps = (far.saturating_sub(d) > t) | (z(d).saturating_sub(near_1) > t);
+        let c = u16::from(d != 0) & u16::from(jumps);
+        cand[k] = c;
+        any |= c;
+    }
+    any != 0
+}
+
+/// Unmark (`u32::MAX`) the binned pixels of image row `v` of `depth` that `mixed`
+/// finds mixed; `jump` is [`mark_candidates`]'s. `padded` holds the row's width + 2
+/// with its ends 0. Returns how many.
+fn drop_mixed(
+    mixed: &MixedPixels,
+    jump: u16,
+    depth: &[u16],
+    v: usize,
+    padded: &mut [u16],
+    rb: &mut RowBuffers,
+) -> u32 {
+    let width = padded.len() - 2;
+    let rows = depth.len() / width.max(1);
+    let line = |r: usize| &depth[r * width..(r + 1) * width];
+    let pixels = line(v);
+    padded[1..=width].copy_from_slice(pixels);
+    let near = Neighbours {
+        left: &padded[..width],
+        right: &padded[2..],
+        // Past the image's top or bottom: the pixel itself, no jump.
+        above: if v > 0 { line(v - 1) } else { pixels },
+        below: if v + 1 < rows { line(v + 1) } else { pixels },
+    };
+    if !mark_candidates(pixels, &near, jump, &mut rb.cand) {
+        return 0;
+    }
+    let mut dropped = 0;
+    for (u, (&c, i)) in rb.cand.iter().zip(rb.idx.iter_mut()).enumerate() {
+        if c != 0 && *i != u32::MAX && mixed.is_mixed(depth, width, u, v) {
+            *i = u32::MAX;
+            dropped += 1;
+        }
+    }
+    dropped
+}
+
+/// A pixel's four neighbours' depths (0 = no return or outside the image), each
+/// array aligned with the row.
+struct Neighbours<'a> {
+    left: &'a [u16],
+    right: &'a [u16],
+    above: &'a [u16],
+    below: &'a [u16],
+}
+
 /// The branch-free half of binning one row: every pixel's voxel index (`u32::MAX`
 /// when out of range or outside the grid) and position in voxel units. Returns the
-/// number of pixels in range. Written as plain indexed arithmetic so that it
-/// vectorises; compiled for several instruction sets and picked at run time (same
-/// results on each: Rust never fuses multiply-adds on its own).
+/// number of pixels in range and whether any falls inside the grid. Written as plain
+/// indexed arithmetic so that it vectorises; compiled for several instruction sets
+/// and picked at run time (same results on each: Rust never fuses multiply-adds on
+/// its own).
 #[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
-fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffers) -> u32 {
+fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffers) -> (u32, bool) {
     let n = cols.x.len().min(pixels.len()).min(rb.idx.len());
     let (cx_t, cy_t, cz_t, pixels) = (&cols.x[..n], &cols.y[..n], &cols.z[..n], &pixels[..n]);
     let (idx, qx, qy, qz) = (
@@ -232,6 +318,7 @@ fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffer
         &mut rb.qz[..n],
     );
     let mut valid = 0u32;
+    let mut any_inside = 0u32;
     for k in 0..n {
         let d = pixels[k];
         let in_range = (d >= p.min_mm) & (d <= p.max_mm);
@@ -266,12 +353,13 @@ fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffer
             )
         };
         let i = ix * p.strides[0] + iy * p.strides[1] + iz;
+        any_inside |= u32::from(inside);
         idx[k] = if inside { i as u32 } else { u32::MAX };
         qx[k] = x;
         qy[k] = y;
         qz[k] = h;
     }
-    valid
+    (valid, any_inside != 0)
 }
 
 /// The projector's per-column rays in voxel units, as three arrays (vectorises).
@@ -286,6 +374,8 @@ struct ColumnRays {
 #[derive(Debug, Clone, Default)]
 struct RowBuffers {
     idx: Vec<u32>,
+    /// 1 where the pixel may be mixed (`mark_candidates`).
+    cand: Vec<u16>,
     qx: Vec<f32>,
     qy: Vec<f32>,
     qz: Vec<f32>,
@@ -295,6 +385,7 @@ impl RowBuffers {
     fn resize(&mut self, width: usize) {
         // Allocates only when the width grows (the first frame).
         self.idx.resize(width, u32::MAX);
+        self.cand.resize(width, 0);
         self.qx.resize(width, 0.0);
         self.qy.resize(width, 0.0);
         self.qz.resize(width, 0.0);
@@ -314,6 +405,9 @@ pub struct VoxelGrid {
     cut: Vec<bool>,
     touched_cut: Vec<u32>,
     row: RowBuffers,
+    /// The image row being binned with a pixel of no return either side: its
+    /// pixels' left and right neighbours.
+    padded: Vec<u16>,
     cols: ColumnRays,
 }
 
@@ -333,6 +427,7 @@ impl VoxelGrid {
             cut: vec![false; spec.cell_count()],
             touched_cut: Vec::with_capacity(spec.cell_count()),
             row: RowBuffers::default(),
+            padded: Vec::new(),
             cols: ColumnRays::default(),
         }
     }
@@ -363,7 +458,7 @@ impl VoxelGrid {
 
     /// Project, transform and bin one depth image (`projector`'s size) in one pass.
     /// Depths outside `[min_mm, max_mm]` are skipped (`min_mm ≥ 1`, so 0 = no return
-    /// is always skipped).
+    /// is always skipped), and so are the pixels `mixed` finds mixed at a depth edge.
     ///
     /// Each row is done in two steps: a branch-free pass that the compiler vectorises
     /// computes every pixel's voxel index (or `u32::MAX`) and its position in voxel
@@ -375,6 +470,7 @@ impl VoxelGrid {
         depth: &[u16],
         min_mm: u16,
         max_mm: u16,
+        mixed: &MixedPixels,
     ) -> BinStats {
         for &i in &self.touched {
             self.acc[i as usize] = Acc::default();
@@ -397,6 +493,13 @@ impl VoxelGrid {
         let (sy_stride, sx_stride) = (s.nz as i32, (s.ny * s.nz) as i32);
         let width = projector.width();
         self.row.resize(width);
+        // Allocates only when the width grows (the first frame); the ends stay 0.
+        self.padded.resize(width + 2, 0);
+        self.padded[0] = 0;
+        self.padded[width + 1] = 0;
+        // The least jump per mm of depth in 16.16 fixed point (≤ 1: never more).
+        let [ju, jv] = mixed.per_mm();
+        let jump = (ju.min(jv) * 65536.0).clamp(0.0, 65535.0) as u16;
         if self.cols.x.len() != width {
             // First frame (or a new projector size): allocate once.
             let c = projector.col_table();
@@ -414,7 +517,7 @@ impl VoxelGrid {
         {
             let r = [row[0] * inv, row[1] * inv, row[2] * inv];
             let rb = &mut self.row;
-            let valid = index_row(
+            let (valid, inside) = index_row(
                 &self.cols,
                 pixels,
                 RowParams {
@@ -428,6 +531,9 @@ impl VoxelGrid {
                 rb,
             );
             stats.points_in += valid;
+            if inside && mixed.is_on() {
+                stats.points_mixed += drop_mixed(mixed, jump, depth, v, &mut self.padded, rb);
+            }
             if v < CUT_ROWS {
                 // The top rows' points mark the cells where the view is cut.
                 for &i in rb.idx.iter().filter(|&&i| i != u32::MAX) {
@@ -589,7 +695,7 @@ mod tests {
                 ((0.8 / -r.z) * 1000.0).round() as u16
             })
             .collect();
-        let stats = g.bin(&p, &depth, 400, 4500);
+        let stats = g.bin(&p, &depth, 400, 4500, &MixedPixels::OFF);
         g.emit();
         assert!(stats.points_binned > 0 && stats.points_binned <= stats.points_in);
         let total: u32 = g.voxels().iter().map(|v| v.count).sum();
@@ -603,14 +709,54 @@ mod tests {
         }
         // Rebinning the same frame gives the same result (reset works).
         let before = g.voxels().to_vec();
-        g.bin(&p, &depth, 400, 4500);
+        g.bin(&p, &depth, 400, 4500, &MixedPixels::OFF);
         g.emit();
         assert_eq!(before, g.voxels());
         // An empty frame clears everything.
-        g.bin(&p, &vec![0; 64 * 48], 400, 4500);
+        g.bin(&p, &vec![0; 64 * 48], 400, 4500, &MixedPixels::OFF);
         g.emit();
         assert!(g.voxels().is_empty());
         assert!(g.cells().iter().all(|c| c.n == 0));
+    }
+
+    #[test]
+    fn a_mixed_pixel_is_not_binned_and_the_surfaces_either_side_are() {
+        // Flat ground seen by the default camera, and one pixel on it moved half way
+        // to where the pixel beside it sees (as across an edge): with the filter the
+        // moved pixel alone is dropped; without, it is binned.
+        let c = Config::default();
+        let p = Projector::new(&c, 640, 480);
+        let spec = GridSpec::from_config(&c);
+        let o = p.origin();
+        let mut depth: Vec<u16> = (0..480)
+            .flat_map(|v| (0..640).map(move |u| (u, v)))
+            .map(|(u, v)| {
+                let r = p.ray(u, v);
+                if r.z < -1e-6 {
+                    ((-f64::from(o[2]) / r.z) * 1000.0).round().min(4500.0) as u16
+                } else {
+                    0
+                }
+            })
+            .collect();
+        // Columns 321.. are a far surface 0.6 m behind, pixel 320 is mixed between.
+        let v = 400;
+        for u in 321..640 {
+            depth[v * 640 + u] = depth[v * 640 + 319] + 600;
+        }
+        depth[v * 640 + 320] = depth[v * 640 + 319] + 300;
+        let mixed = MixedPixels::new(&p, c.analysis.mixed_pixel_angle_deg);
+        let mut on = VoxelGrid::new(spec, 640 * 480);
+        let with = on.bin(&p, &depth, 400, 4500, &mixed);
+        let mut off = VoxelGrid::new(spec, 640 * 480);
+        let without = off.bin(&p, &depth, 400, 4500, &MixedPixels::OFF);
+        assert_eq!(with.points_mixed, 1);
+        assert_eq!(without.points_mixed, 0);
+        assert_eq!(with.points_in, without.points_in);
+        assert_eq!(with.points_binned + 1, without.points_binned);
+        assert!(mixed.is_mixed(&depth, 640, 320, v));
+        // Its neighbours on either surface are kept.
+        assert!(!mixed.is_mixed(&depth, 640, 319, v) && !mixed.is_mixed(&depth, 640, 321, v));
     }
 
     #[test]
@@ -652,7 +798,7 @@ mod tests {
             })
             .expect("a pixel sees the cell's ground at z = 0");
         depth[stray.1 * 640 + stray.0] = depth_at(stray.0, stray.1, 0.0);
-        g.bin(&p, &depth, 400, 4500);
+        g.bin(&p, &depth, 400, 4500, &MixedPixels::OFF);
         g.emit();
         let cell = g.cells()[spec.cell(target.0, target.1)];
         assert_eq!(cell.n, 3);

@@ -18,6 +18,7 @@ pub mod inspect;
 pub mod level;
 pub mod link;
 pub mod memory;
+pub mod mixed_pixels;
 pub mod pipeline;
 pub mod projection;
 pub mod service;

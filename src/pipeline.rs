@@ -12,6 +12,7 @@ use crate::config::Config;
 use crate::grid::{GridSpec, VoxelGrid};
 use crate::memory::odometry::Untrusted;
 use crate::memory::{MemoryState, Motion, TerrainMemory};
+use crate::mixed_pixels::MixedPixels;
 use crate::projection::Projector;
 use crate::verdict::Verdict;
 use crate::Error;
@@ -28,6 +29,7 @@ pub struct Pipeline {
     verdict: Verdict,
     min_mm: u16,
     max_mm: u16,
+    mixed: MixedPixels,
     leveled: bool,
 }
 
@@ -41,6 +43,7 @@ impl Pipeline {
         let projector = Projector::new(&config, w, h);
         let spec = GridSpec::from_config(&config);
         let grid = VoxelGrid::new(spec, w * h);
+        let mixed = MixedPixels::new(&projector, config.analysis.mixed_pixel_angle_deg);
         let analyzer = Analyzer::new(&config, spec, &projector)?;
         let memory = config.memory.enabled.then(|| {
             let mut m = TerrainMemory::new(&config, spec);
@@ -62,6 +65,7 @@ impl Pipeline {
             verdict: Verdict::default(),
             min_mm,
             max_mm,
+            mixed,
             leveled: false,
         })
     }
@@ -165,9 +169,13 @@ impl Pipeline {
             roll_deg: self.config.mount.roll_deg as f32,
             from_accelerometer: self.leveled,
         };
-        let stats = self
-            .grid
-            .bin(&self.projector, frame.pixels(), self.min_mm, self.max_mm);
+        let stats = self.grid.bin(
+            &self.projector,
+            frame.pixels(),
+            self.min_mm,
+            self.max_mm,
+            &self.mixed,
+        );
         let t1 = Instant::now();
         self.grid.emit();
         let t2 = Instant::now();

@@ -100,6 +100,19 @@ impl Projector {
         u >= 0.5 && v >= 0.5 && u <= w - 1.5 && v <= h - 1.5
     }
 
+    /// The angle between neighbouring pixels' rays at the image centre, along a row
+    /// and along a column: `[u, v]`, radians.
+    pub fn pixel_angle(&self) -> [f64; 2] {
+        let step = |t: &[f64]| {
+            if t.len() > 1 {
+                (t[1] - t[0]).abs()
+            } else {
+                0.0
+            }
+        };
+        [step(&self.kx), step(&self.ky)]
+    }
+
     /// Per-column ray parts (`kx[u]·M₀`), rover frame.
     pub fn col_table(&self) -> &[[f32; 3]] {
         &self.col

@@ -88,6 +88,7 @@ fn the_library_has_no_import_cycles_and_its_core_imports_no_tool() {
         "config",
         "projection",
         "grid",
+        "mixed_pixels",
         "analysis",
         "verdict",
         "pipeline",

@@ -1,6 +1,7 @@
 //! After warm-up, processing a frame allocates nothing on the heap: a counting global
-//! allocator watches 100 frames of varied terrain, each analysed and written out as a
-//! JSON line (the README's stdout link).
+//! allocator watches 100 frames of varied terrain (mixed pixels at a rock's edges
+//! among them), each analysed and written out as a JSON line (the README's stdout
+//! link).
 
 use std::sync::atomic::Ordering;
 
@@ -52,6 +53,10 @@ fn processing_allocates_nothing_after_warm_up() {
     let mut noisy = frames[1].clone();
     KinectNoise::default().apply(&mut noisy, config.camera.hfov_deg);
     frames.push(noisy);
+    // A rock's edges with mixed pixels: the filter's exact test runs on them.
+    let mut flying = frames[6].clone();
+    sim::FlyingPixels::default().apply(&mut flying);
+    frames.push(flying);
     let (w, h) = (frames[0].width(), frames[0].height());
     frames.push(rover_terrain_drivers::DepthFrame::from_pixels(
         w,
