@@ -3,7 +3,8 @@
 //! cuts the cell), unseen expected cells as `?`. With `STRIP=IY` in the environment,
 //! also every cell of strip IY: mean, top, low, crest and foot heights, cut or not.
 //! With `CONFIG=FILE` (a TOML configuration, as `sweep`'s `DUMP` writes one for a
-//! random rig), that mount and camera instead of the default.
+//! random rig), that mount and camera instead of the default. A second argument, a
+//! seed, adds Kinect noise; `FLYING=FRACTION` then mixes edge pixels too (as `sweep`).
 use rover_terrain::sim::{self, Element, Terrain};
 use rover_terrain::{Config, Pipeline};
 
@@ -27,6 +28,15 @@ fn main() {
             ..Default::default()
         }
         .apply(&mut frame, config.camera.hfov_deg);
+        // FLYING=FRACTION: mix edge pixels too, with the same seed (as `sweep` does).
+        if let Some(fraction) = std::env::var("FLYING").ok().and_then(|v| v.parse().ok()) {
+            sim::FlyingPixels {
+                seed,
+                fraction,
+                ..Default::default()
+            }
+            .apply(&mut frame);
+        }
     }
     let mut p = Pipeline::new(config).unwrap();
     let v = p.process(&frame).unwrap().clone();
