@@ -365,6 +365,8 @@ fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffer
 /// The projector's per-column rays in voxel units, as three arrays (vectorises).
 #[derive(Debug, Clone, Default)]
 struct ColumnRays {
+    /// The projector's column table these were made from (rover frame, per metre).
+    source: Vec<[f32; 3]>,
     x: Vec<f32>,
     y: Vec<f32>,
     z: Vec<f32>,
@@ -500,9 +502,10 @@ impl VoxelGrid {
         // The least jump per mm of depth in 16.16 fixed point (≤ 1: never more).
         let [ju, jv] = mixed.per_mm();
         let jump = (ju.min(jv) * 65536.0).clamp(0.0, 65535.0) as u16;
-        if self.cols.x.len() != width {
-            // First frame (or a new projector size): allocate once.
+        if self.cols.source != projector.col_table() {
+            // First frame, or a new projector (size or mount: auto-level): allocate.
             let c = projector.col_table();
+            self.cols.source = c.to_vec();
             self.cols.x = c.iter().map(|c| c[0] * inv).collect();
             self.cols.y = c.iter().map(|c| c[1] * inv).collect();
             self.cols.z = c.iter().map(|c| c[2] * inv).collect();

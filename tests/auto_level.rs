@@ -81,3 +81,36 @@ fn recorded_tilt_replaces_a_wrong_configured_pitch() {
         assert!(off, "the wrong pitch should matter: {x}");
     }
 }
+
+#[test]
+fn a_new_attitude_bins_exactly_as_a_pipeline_built_for_it() {
+    // The service starts with the configured mount and the accelerometer says the
+    // camera is rolled: after `set_attitude` every ray, along rows and columns, must
+    // be the new mount's, as in a pipeline configured with it from the start.
+    use rover_terrain::sim::{self, Element, Terrain};
+    use rover_terrain::{Config, Pipeline};
+    let mut rolled = Config::default();
+    (rolled.mount.pitch_deg, rolled.mount.roll_deg) = (33.0, 6.0);
+    let terrain = Terrain::new(vec![Element::Rock {
+        x_m: 1.5,
+        y_m: 0.3,
+        radius_m: 0.2,
+        height_m: 0.12,
+    }]);
+    let frame = sim::render(&terrain, &rolled);
+    let mut leveled = Pipeline::new(Config::default()).unwrap();
+    leveled.process(&frame).unwrap();
+    leveled
+        .set_attitude(rover_terrain::level::Attitude {
+            pitch_deg: 33.0,
+            roll_deg: 6.0,
+        })
+        .unwrap();
+    let got = leveled.process(&frame).unwrap().clone();
+    let mut fresh = Pipeline::new(rolled).unwrap();
+    let want = fresh.process(&frame).unwrap().clone();
+    // Compared whole; printed only by count (thousands of voxels).
+    let (a, b) = (leveled.grid().voxels(), fresh.grid().voxels());
+    assert!(a == b, "{} voxels against {}, not the same", a.len(), b.len());
+    assert_eq!(got.decision, want.decision);
+}
