@@ -220,66 +220,62 @@ struct RowParams {
     max_mm: u16,
 }
 
-/// Mark in `cand` the pixels of a row that may be mixed ([`MixedPixels`]): returned,
-/// with a returned neighbour (`near`) more than the least jump at the pixel's depth
-/// away (`jump`: per mm of depth, the lesser of the row's and the column's, 16.16
-/// fixed point, rounded down: never more). A mixed pixel always is one;
-/// [`MixedPixels::is_mixed`] decides. Returns whether any is. Branch-free in 16-bit
-/// lanes, so that it vectorises like [`index_row`].
+/// Mark in `cand` the pixels of `row` that may be mixed ([`MixedPixels`]):
+/// returned, with a returned neighbour (along the row, or in `above` and `below`, all
+/// as wide) more than the least jump at the pixel's depth away (`jump`: per mm of
+/// depth, the lesser of the row's and the column's, 16.16 fixed point, rounded down:
+/// never more). A mixed pixel always is one; [`MixedPixels::is_mixed`] decides.
+/// Returns whether any is. Branch-free in 16-bit lanes, so that it vectorises like
+/// [`index_row`].
 #[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
-fn mark_candidates(pixels: &[u16], near: &Neighbours, jump: u16, cand: &mut [u16]) -> bool {
-    let n = pixels
-        .len()
-        .min(cand.len())
-        .min(near.left.len())
-        .min(near.right.len());
-    let n = n.min(near.above.len()).min(near.below.len());
-    let (pixels, cand) = (&pixels[..n], &mut cand[..n]);
-    let (left, right) = (&near.left[..n], &near.right[..n]);
-    let (above, below) = (&near.above[..n], &near.below[..n]);
-    let mut any = 0u16;
-    for k in 0..n {
-        let d = pixels[k];
+fn mark_candidates(above: &[u16], row: &[u16], below: &[u16], jump: u16, cand: &mut [u16]) -> bool {
+    let n = row.len().min(above.len()).min(below.len()).min(cand.len());
+    if n < 2 {
+        cand[..n].fill(0);
+        return false;
+    }
+    // Pixel `d` with neighbours `x` (0: none): 1 when one lies more than the jump off.
+    let candidate = |d: u16, x: [u16; 4]| {
         let t = ((u32::from(d) * u32::from(jump)) >> 16) as u16;
-        // The farthest and the nearest returned neighbour (0 wraps to the top).
-        let far = left[k].max(right[k]).max(above[k]).max(below[k]);
-        let z = |x: u16| x.wrapping_sub(1);
-        let near_1 = z(left[k])
-            .min(z(right[k]))
-            .min(z(above[k]))
-            .min(z(below[k]));
-        let jumps = (far.saturating_sub(d) > t) | (z(d).saturating_sub(near_1) > t);
-        let c = u16::from(d != 0) & u16::from(jumps);
-        cand[k] = c;
+        let far = x[0].max(x[1]).max(x[2]).max(x[3]);
+        // The nearest returned one, less 1 (0 wraps to the top and never wins).
+        let z = |v: u16| v.wrapping_sub(1);
+        let near_1 = z(x[0]).min(z(x[1])).min(z(x[2])).min(z(x[3]));
+        let off = far.saturating_sub(d).max(z(d).saturating_sub(near_1));
+        // 1 when off > t and d returned (min and saturation instead of compares).
+        off.saturating_sub(t).min(1) & d.min(1)
+    };
+    // The ends of the row have one neighbour along it.
+    cand[0] = candidate(row[0], [0, row[1], above[0], below[0]]);
+    let last = n - 1;
+    cand[last] = candidate(row[last], [row[last - 1], 0, above[last], below[last]]);
+    let mut any = cand[0] | cand[last];
+    let (left, mid, right) = (&row[..n - 2], &row[1..last], &row[2..n]);
+    let (up, down, out) = (&above[1..last], &below[1..last], &mut cand[1..last]);
+    for k in 0..n - 2 {
+        let c = candidate(mid[k], [left[k], right[k], up[k], down[k]]);
+        out[k] = c;
         any |= c;
     }
     any != 0
 }
 
-/// Unmark (`u32::MAX`) the binned pixels of image row `v` of `depth` that `mixed`
-/// finds mixed; `jump` is [`mark_candidates`]'s. `padded` holds the row's width + 2
-/// with its ends 0. Returns how many.
+/// Unmark (`u32::MAX`) the binned pixels of image row `v` of `depth` (`width`
+/// wide) that `mixed` finds mixed; `jump` is [`mark_candidates`]'s. Returns how many.
 fn drop_mixed(
     mixed: &MixedPixels,
     jump: u16,
-    depth: &[u16],
+    (depth, width): (&[u16], usize),
     v: usize,
-    padded: &mut [u16],
     rb: &mut RowBuffers,
 ) -> u32 {
-    let width = padded.len() - 2;
     let rows = depth.len() / width.max(1);
     let line = |r: usize| &depth[r * width..(r + 1) * width];
     let pixels = line(v);
-    padded[1..=width].copy_from_slice(pixels);
-    let near = Neighbours {
-        left: &padded[..width],
-        right: &padded[2..],
-        // Past the image's top or bottom: the pixel itself, no jump.
-        above: if v > 0 { line(v - 1) } else { pixels },
-        below: if v + 1 < rows { line(v + 1) } else { pixels },
-    };
-    if !mark_candidates(pixels, &near, jump, &mut rb.cand) {
+    // Past the image's top or bottom: the pixel itself, no jump.
+    let above = if v > 0 { line(v - 1) } else { pixels };
+    let below = if v + 1 < rows { line(v + 1) } else { pixels };
+    if !mark_candidates(above, pixels, below, jump, &mut rb.cand) {
         return 0;
     }
     let mut dropped = 0;
@@ -292,23 +288,13 @@ fn drop_mixed(
     dropped
 }
 
-/// A pixel's four neighbours' depths (0 = no return or outside the image), each
-/// array aligned with the row.
-struct Neighbours<'a> {
-    left: &'a [u16],
-    right: &'a [u16],
-    above: &'a [u16],
-    below: &'a [u16],
-}
-
 /// The branch-free half of binning one row: every pixel's voxel index (`u32::MAX`
 /// when out of range or outside the grid) and position in voxel units. Returns the
-/// number of pixels in range and whether any falls inside the grid. Written as plain
-/// indexed arithmetic so that it vectorises; compiled for several instruction sets
-/// and picked at run time (same results on each: Rust never fuses multiply-adds on
-/// its own).
+/// number of pixels in range. Written as plain indexed arithmetic so that it
+/// vectorises; compiled for several instruction sets and picked at run time (same
+/// results on each: Rust never fuses multiply-adds on its own).
 #[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
-fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffers) -> (u32, bool) {
+fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffers) -> u32 {
     let n = cols.x.len().min(pixels.len()).min(rb.idx.len());
     let (cx_t, cy_t, cz_t, pixels) = (&cols.x[..n], &cols.y[..n], &cols.z[..n], &pixels[..n]);
     let (idx, qx, qy, qz) = (
@@ -318,7 +304,6 @@ fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffer
         &mut rb.qz[..n],
     );
     let mut valid = 0u32;
-    let mut any_inside = 0u32;
     for k in 0..n {
         let d = pixels[k];
         let in_range = (d >= p.min_mm) & (d <= p.max_mm);
@@ -353,13 +338,12 @@ fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffer
             )
         };
         let i = ix * p.strides[0] + iy * p.strides[1] + iz;
-        any_inside |= u32::from(inside);
         idx[k] = if inside { i as u32 } else { u32::MAX };
         qx[k] = x;
         qy[k] = y;
         qz[k] = h;
     }
-    (valid, any_inside != 0)
+    valid
 }
 
 /// The projector's per-column rays in voxel units, as three arrays (vectorises).
@@ -407,9 +391,6 @@ pub struct VoxelGrid {
     cut: Vec<bool>,
     touched_cut: Vec<u32>,
     row: RowBuffers,
-    /// The image row being binned with a pixel of no return either side: its
-    /// pixels' left and right neighbours.
-    padded: Vec<u16>,
     cols: ColumnRays,
 }
 
@@ -429,7 +410,6 @@ impl VoxelGrid {
             cut: vec![false; spec.cell_count()],
             touched_cut: Vec::with_capacity(spec.cell_count()),
             row: RowBuffers::default(),
-            padded: Vec::new(),
             cols: ColumnRays::default(),
         }
     }
@@ -495,10 +475,6 @@ impl VoxelGrid {
         let (sy_stride, sx_stride) = (s.nz as i32, (s.ny * s.nz) as i32);
         let width = projector.width();
         self.row.resize(width);
-        // Allocates only when the width grows (the first frame); the ends stay 0.
-        self.padded.resize(width + 2, 0);
-        self.padded[0] = 0;
-        self.padded[width + 1] = 0;
         // The least jump per mm of depth in 16.16 fixed point (≤ 1: never more).
         let [ju, jv] = mixed.per_mm();
         let jump = (ju.min(jv) * 65536.0).clamp(0.0, 65535.0) as u16;
@@ -520,7 +496,7 @@ impl VoxelGrid {
         {
             let r = [row[0] * inv, row[1] * inv, row[2] * inv];
             let rb = &mut self.row;
-            let (valid, inside) = index_row(
+            let valid = index_row(
                 &self.cols,
                 pixels,
                 RowParams {
@@ -534,8 +510,8 @@ impl VoxelGrid {
                 rb,
             );
             stats.points_in += valid;
-            if inside && mixed.is_on() {
-                stats.points_mixed += drop_mixed(mixed, jump, depth, v, &mut self.padded, rb);
+            if mixed.is_on() {
+                stats.points_mixed += drop_mixed(mixed, jump, (depth, width), v, rb);
             }
             if v < CUT_ROWS {
                 // The top rows' points mark the cells where the view is cut.

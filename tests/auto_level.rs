@@ -111,6 +111,11 @@ fn a_new_attitude_bins_exactly_as_a_pipeline_built_for_it() {
     let want = fresh.process(&frame).unwrap().clone();
     // Compared whole; printed only by count (thousands of voxels).
     let (a, b) = (leveled.grid().voxels(), fresh.grid().voxels());
-    assert!(a == b, "{} voxels against {}, not the same", a.len(), b.len());
+    assert!(
+        a == b,
+        "{} voxels against {}, not the same",
+        a.len(),
+        b.len()
+    );
     assert_eq!(got.decision, want.decision);
 }
