@@ -1296,14 +1296,16 @@ fn judge_gap(
     // judged by the step and slope test.
     let k = before.slope().clamp(-tan_max, tan_max);
     let predicted = |x: f32| zb + k * (x - xb);
-    // The same fall measured from the line through the recent cells: a last cell
-    // holding a face's points (a belly band's edge beside a descending track) stands
-    // above the ground and would make the ground beyond a drop.
-    let below_line = |xa: f32, za: f32| {
-        before
-            .line()
-            .is_none_or(|(kl, _, zl)| za < zl + kl.clamp(-tan_max, tan_max) * (xa - xb) - r)
-    };
+    // The ground before the gap continued from the line through the recent cells (its
+    // slope up to passable), which one odd last cell does not move.
+    let on_line = before.line().map(|(kl, _, zl)| {
+        let kl = kl.clamp(-tan_max, tan_max);
+        move |x: f32| zl + kl * (x - xb)
+    });
+    // The same fall measured from that line: a last cell holding a face's points (a
+    // belly band's edge beside a descending track) stands above the ground and would
+    // make the ground beyond a drop.
+    let below_line = |xa: f32, za: f32| on_line.is_none_or(|z| za < z(xa) - r);
     let unseen = (start..end).filter(|&j| f.expected[s.cell(j, iy)] && !f.seen[s.cell(j, iy)]);
     let c = f.camera;
     let grazing = unseen.clone().all(|j| {
@@ -1340,10 +1342,6 @@ fn judge_gap(
                     .clone()
                     .all(|j| super::visibility::explained(f, j, iy, z(s.x_centre(j))))
             };
-            let on_line = before.line().map(|(kl, _, zl)| {
-                let kl = kl.clamp(-tan_max, tan_max);
-                move |x: f32| zl + kl * (x - xb)
-            });
             let hidden = hidden_at(&predicted) || on_line.is_some_and(|z| hidden_at(&z));
             (!hidden && !bumps() && !sampled_out()).then_some(HazardKind::DropOff)
         }
