@@ -214,6 +214,82 @@ mod tests {
         assert!(close(hit.y, 0.0, 1e-12));
     }
 
+    /// The ground point (x, y) that pixel (u, v) sees, by hand: the optical ray
+    /// (kx, ky, 1) in the body axes, turned by roll about x, then pitch about y
+    /// (positive looks down), then yaw about z (URDF `rpy`), from height `h`.
+    fn hand_ground(kx: f64, ky: f64, [r, p, y]: [f64; 3], h: f64) -> (f64, f64) {
+        let (x0, y0, z0) = (1.0, -kx, ky);
+        let (y1, z1) = (y0 * r.cos() - z0 * r.sin(), y0 * r.sin() + z0 * r.cos());
+        let (x2, z2) = (x0 * p.cos() + z1 * p.sin(), -x0 * p.sin() + z1 * p.cos());
+        let (x3, y3) = (x2 * y.cos() - y1 * y.sin(), x2 * y.sin() + y1 * y.cos());
+        let t = h / -z2;
+        (t * x3, t * y3)
+    }
+
+    #[test]
+    fn roll_pitch_and_yaw_turn_the_rays_as_the_config_says() {
+        let mut c = Config::default();
+        c.mount.z_m = 0.9;
+        c.mount.pitch_deg = 35.0;
+        let (tx, ty) = (
+            (57f64 / 2.0).to_radians().tan(),
+            (43f64 / 2.0).to_radians().tan(),
+        );
+        for (roll, yaw) in [(10.0, 0.0), (-10.0, 0.0), (0.0, 10.0), (7.0, -9.0)] {
+            c.mount.roll_deg = roll;
+            c.mount.yaw_deg = yaw;
+            let p = Projector::new(&c, 640, 480);
+            let angles = [roll, 35.0f64, yaw].map(f64::to_radians);
+            for (u, v) in [(0, 479), (639, 479), (320, 240), (100, 300), (600, 420)] {
+                let (kx, ky) = (
+                    (u as f64 / 640.0 - 0.5) * 2.0 * tx,
+                    (0.5 - v as f64 / 480.0) * 2.0 * ty,
+                );
+                let (x, y) = hand_ground(kx, ky, angles, 0.9);
+                let r = p.ray(u, v);
+                let hit = p.point(u, v, 0.9 / -r.z);
+                assert!(
+                    close(hit.x, x, 1e-9) && close(hit.y, y, 1e-9),
+                    "{roll} {yaw} ({u},{v}): {hit} vs ({x}, {y})"
+                );
+            }
+        }
+        // The signs in words: rolled left side up, the bottom row's right end sees the
+        // ground nearer than its left end; yawed left, the centre looks left.
+        c.mount.roll_deg = 10.0;
+        c.mount.yaw_deg = 0.0;
+        let p = Projector::new(&c, 640, 480);
+        let ground = |u, v| p.point(u, v, 0.9 / -p.ray(u, v).z);
+        assert!(ground(639, 479).x < ground(0, 479).x - 0.05);
+        c.mount.roll_deg = 0.0;
+        c.mount.yaw_deg = 10.0;
+        let p = Projector::new(&c, 640, 480);
+        let centre = p.point(320, 240, 0.9 / -p.ray(320, 240).z);
+        assert!(
+            close(centre.y / centre.x, 10f64.to_radians().tan(), 1e-9),
+            "{centre}"
+        );
+    }
+
+    #[test]
+    fn an_off_centre_principal_point_is_the_pixel_that_looks_along_the_axis() {
+        let mut c = Config::default();
+        c.mount.pitch_deg = 0.0;
+        c.camera.width = 848;
+        c.camera.fx = Some(425.0);
+        c.camera.fy = Some(426.0);
+        c.camera.cx = Some(430.0);
+        c.camera.cy = Some(236.0);
+        let p = Projector::new(&c, 848, 480);
+        let r = p.ray(430, 236);
+        assert!(close(r.y, 0.0, 1e-12) && close(r.z, 0.0, 1e-12), "{r}");
+        // 425 pixels right of cx is 45° right; 426 below cy is 45° down.
+        let r = p.ray(430 + 415, 236);
+        assert!(close(r.y, -415.0 / 425.0, 1e-12), "{r}");
+        let r = p.ray(430, 236 + 213);
+        assert!(close(r.z, -213.0 / 426.0, 1e-12), "{r}");
+    }
+
     #[test]
     fn project_inverts_point() {
         let mut c = Config::default();
