@@ -21,7 +21,13 @@
 //! (`N.json`, for `cells`) and configuration (`N.toml`, for `cells`' `CONFIG` and
 //! `rover-terrain inspect --config`) there. `FLYING=FRACTION` also mixes that fraction
 //! of the noisy frames' depth-edge pixels (`sim::FlyingPixels`, as time-of-flight
-//! cameras give).
+//! cameras give). `EXACT=1` draws each frame with the second renderer of
+//! `tests/common/second_renderer.rs` (its own rays, exact planes and faces) instead of
+//! `sim::render`; scenes it cannot draw (rough ground, rocks) are skipped, and the last
+//! line counts them.
+
+#[path = "../tests/common/second_renderer.rs"]
+mod second;
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -29,6 +35,7 @@ use rover_terrain::analysis::GRAZING_DEG;
 use rover_terrain::sim::{self, families, random, Expectation, KinectNoise, Terrain, Tolerance};
 use rover_terrain::validate::{compare, CLEAN, NOISY};
 use rover_terrain::{Config, Decision, Pipeline};
+use rover_terrain_drivers::DepthFrame;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -46,13 +53,24 @@ fn main() {
     // `families` mode: just this family (its index in `families::Family::ALL`).
     let family = args.get(5).and_then(|s| s.parse::<usize>().ok());
     let (mut failures, mut total, mut false_go, mut excused) = (0, 0, 0, (0, 0));
+    let exact = std::env::var("EXACT").is_ok_and(|v| v == "1");
+    let mut not_drawn = 0;
     for i in 0..n {
         let (terrain, want, config, tol) = draw(&mut rng, mode, i, random_rig, family);
         if only.as_ref().is_some_and(|o| !o.contains(&i)) {
             continue;
         }
         let mut pipeline = Pipeline::new(config.clone()).expect("config works");
-        let frame = sim::render(&terrain, &config);
+        let frame = if exact {
+            let Some(ground) = second::planar(&terrain) else {
+                not_drawn += 1;
+                continue;
+            };
+            let rig = second::rig_of(&config);
+            DepthFrame::from_pixels(rig.width, rig.height, ground.render(&rig))
+        } else {
+            sim::render(&terrain, &config)
+        };
         for noisy in [false, true] {
             let mut f = frame.clone();
             if noisy {
@@ -119,6 +137,9 @@ fn main() {
         "{} passed, {failures} failed, {false_go} false go",
         total - failures
     );
+    if exact {
+        println!("{not_drawn} scenes not drawn (not made of planes)");
+    }
     if mode == "oblique" {
         println!(
             "{} frames met a surface under {GRAZING_DEG}° (any verdict passes), {} of them not go",
