@@ -57,6 +57,89 @@ fn step(x_m: f64, height_m: f64, extent: Extent) -> Terrain {
     }])
 }
 
+/// Flat ground with a rock under the belly, `belly` metres high, and a pebble of
+/// 4-9 cm in each track, all within `at` metres ahead.
+fn rocks(rng: &mut impl Rng, belly: f64, at: (f64, f64)) -> Terrain {
+    let mut e = vec![Element::Rock {
+        x_m: rng.gen_range(at.0..at.1),
+        y_m: rng.gen_range(-0.04..0.04),
+        radius_m: rng.gen_range(0.12..0.17),
+        height_m: belly,
+    }];
+    for y in [0.45, -0.45] {
+        e.push(Element::Rock {
+            x_m: rng.gen_range(at.0..at.1),
+            y_m: y + rng.gen_range(-0.1..0.1),
+            radius_m: rng.gen_range(0.05..0.1),
+            height_m: rng.gen_range(0.04..0.09),
+        });
+    }
+    Terrain::new(e)
+}
+
+/// Flat ground with 3-6 pebbles of 4-9 cm in the tracks, `at` metres ahead.
+fn pebbles(rng: &mut impl Rng, at: (f64, f64)) -> Terrain {
+    let mut t = Terrain::new(Vec::new());
+    for _ in 0..rng.gen_range(3..7) {
+        let side = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+        let y = side * rng.gen_range(0.3..0.6);
+        t = with_rock(t, rng, at, y, (0.05, 0.1), (0.04, 0.09));
+    }
+    t
+}
+
+/// `t` with a rock of 15-20 cm in a track, `at` metres ahead.
+fn boulder_among(rng: &mut impl Rng, t: Terrain, at: (f64, f64)) -> Terrain {
+    let side = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+    let with = with_rock(t.clone(), rng, at, side * 0.45, (0.15, 0.2), (0.15, 0.2));
+    if with.elements.len() > t.elements.len() {
+        with
+    } else {
+        // No room among the pebbles: the rock alone.
+        with_rock(
+            Terrain::new(Vec::new()),
+            rng,
+            at,
+            side * 0.45,
+            (0.15, 0.2),
+            (0.15, 0.2),
+        )
+    }
+}
+
+/// `t` with a rock of a radius and height (metres) in the ranges given, centred `y`
+/// metres left and `at` metres ahead, where it touches no other rock (else `t`).
+fn with_rock(
+    t: Terrain,
+    rng: &mut impl Rng,
+    at: (f64, f64),
+    y: f64,
+    radius: (f64, f64),
+    height: (f64, f64),
+) -> Terrain {
+    let (x, r, h) = (
+        rng.gen_range(at.0..at.1),
+        rng.gen_range(radius.0..radius.1),
+        rng.gen_range(height.0..height.1),
+    );
+    let apart = t.elements.iter().all(|e| match *e {
+        Element::Rock {
+            x_m, y_m, radius_m, ..
+        } => (x - x_m).hypot(y - y_m) >= r + radius_m,
+        _ => true,
+    });
+    let mut e = t.elements;
+    if apart {
+        e.push(Element::Rock {
+            x_m: x,
+            y_m: y,
+            radius_m: r,
+            height_m: h,
+        });
+    }
+    Terrain::new(e)
+}
+
 /// The second renderer's frame of a terrain it can draw.
 fn exact(terrain: &Terrain, rig: &Rig) -> Vec<u16> {
     planar(terrain)
@@ -104,6 +187,24 @@ fn hand_cases_of_the_second_renderer() {
     );
     let want = (0.5 / 10f64.to_radians().sin() * 1000.0).round() as u16;
     assert_eq!(at(&wall, &yawed, 320, 240), want);
+    // Looking straight down from 0.8 m onto a rock 0.2 m high: its top at 0.6 m; and
+    // 5 cm off its centre (radius 0.1 m) at 0.2·√(1 − 0.25) below the top's height.
+    let down = Rig {
+        at: [1.0, 0.0, 0.8],
+        rpy: [0.0, 90.0, 0.0],
+        ..rig
+    };
+    let rock = |x_m| {
+        Terrain::new(vec![Element::Rock {
+            x_m,
+            y_m: 0.0,
+            radius_m: 0.1,
+            height_m: 0.2,
+        }])
+    };
+    assert_eq!(at(&rock(1.0), &down, 320, 240), 600);
+    let want = ((0.8 - 0.2 * 0.75f64.sqrt()) * 1000.0).round() as u16;
+    assert_eq!(at(&rock(1.05), &down, 320, 240), want);
     // A 10 cm step under the left track, 1.5 m ahead: a ray that meets its top does
     // so at z = 0.1, one that meets the ground beside it at z = 0.
     let s = step(1.5, 0.1, track(true));
@@ -131,7 +232,7 @@ fn both_renderers_draw_the_same_frames_on_random_mounts_and_cameras() {
         let rig = Rig::random(&mut rng, 0.25);
         let left = rng.gen_bool(0.5);
         let s = if left { 1.0 } else { -1.0 };
-        let terrain = match i % 3 {
+        let terrain = match i % 4 {
             0 => ramp(
                 rng.gen_range(0.8..1.8),
                 0.45 * s,
@@ -146,7 +247,8 @@ fn both_renderers_draw_the_same_frames_on_random_mounts_and_cameras() {
                 0.0,
                 beside(left),
             ),
-            _ => step(rng.gen_range(0.8..1.8), 0.15, track(left)),
+            2 => step(rng.gen_range(0.8..1.8), 0.15, track(left)),
+            _ => rocks(&mut rng, 0.3, (1.0, 2.0)),
         };
         let ours = sim::render(&terrain, &rig.config());
         let second = exact(&terrain, &rig);
@@ -172,6 +274,15 @@ fn both_renderers_draw_the_same_frames_on_random_mounts_and_cameras() {
         );
         let hits = second.iter().filter(|&&d| d > 0).count();
         assert!(hits * 2 > second.len(), "{why}: the ground is in view");
+        // And so is what stands off it (z more than 1 cm from 0).
+        let relief = (0..second.len())
+            .filter(|&k| {
+                let (u, v) = (k % rig.width, k / rig.width);
+                let t = f64::from(second[k]) / 1000.0;
+                t > 0.0 && (rig.at[2] + t * rig.ray(u, v)[2]).abs() > 0.01
+            })
+            .count();
+        assert!(relief >= 20, "{why}: {relief} pixels off the flat");
     }
 }
 
@@ -321,30 +432,54 @@ fn random_draws_of_the_issues_families_drawn_by_the_second_renderer_pass() {
     use rover_terrain::analysis::GRAZING_DEG;
     use rover_terrain::sim::families::{self, Family};
     use rover_terrain::sim::random::edge_scene_within;
+    use rover_terrain::sim::Expectation;
     use rover_terrain::validate::{compare, CLEAN};
     use rover_terrain::{Decision, Pipeline};
     use rover_terrain_drivers::DepthFrame;
-    // The families made of planes and vertical faces, and impassable edges.
-    let go = [
+    // The families made of planes, vertical faces and rocks on flat ground.
+    let drawn = [
         Family::OneTrackRamp,
         Family::RampOutOfView,
         Family::HalfPlaneDescent,
         Family::OneTrackDescent,
         Family::TwoRamps,
+        Family::BellyRock,
     ];
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(31);
     let (mut judged, mut failed, mut grazing) = (0, Vec::new(), 0);
-    for i in 0..36 {
+    for i in 0..48 {
         let rig = families::Rig::random(&mut rng);
-        let (terrain, expect) = if i % 4 == 3 {
-            edge_scene_within(&mut rng, i, families::judged_span(&rig.config))
-        } else {
-            let d = families::draw(&mut rng, go[i % go.len()], rig.clone());
-            (d.terrain, d.expect)
+        let span = families::judged_span(&rig.config);
+        let (terrain, expect) = match i % 4 {
+            // Impassable edges.
+            0 => edge_scene_within(&mut rng, i, span),
+            // Pebbles of 4-9 cm in the tracks on flat ground (the families draw them
+            // on rough ground): go; with a rock of 15-20 cm in a track: stop.
+            1 => {
+                let boulder = rng.gen_bool(0.5);
+                let mut t = pebbles(&mut rng, (span.start, span.end));
+                if boulder {
+                    t = boulder_among(&mut rng, t, (span.start, span.end));
+                }
+                let want = if boulder {
+                    Decision::Stop
+                } else {
+                    Decision::Go
+                };
+                (t, Expectation::decision(want))
+            }
+            _ => {
+                let d = families::draw(&mut rng, drawn[i % drawn.len()], rig.clone());
+                (d.terrain, d.expect)
+            }
         };
         let c = &rig.config;
         // A descent as steep as the line of sight to it gives no points: any verdict.
-        if families::least_incidence_deg(&terrain, c) < f64::from(GRAZING_DEG) {
+        let descent = terrain
+            .elements
+            .iter()
+            .any(|e| matches!(e, Element::Ramp { gradient_deg, .. } if *gradient_deg < 0.0));
+        if descent && families::least_incidence_deg(&terrain, c) < f64::from(GRAZING_DEG) {
             grazing += 1;
             continue;
         }
@@ -367,8 +502,60 @@ fn random_draws_of_the_issues_families_drawn_by_the_second_renderer_pass() {
         judged += 1;
     }
     assert!(
-        judged >= 30,
+        judged >= 40,
         "{judged} judged, {grazing} at grazing incidence"
     );
     assert!(failed.is_empty(), "{failed:#?}");
+}
+
+#[test]
+fn pebbles_one_behind_another_in_a_track_are_go_and_rocks_so_are_stop() {
+    use rover_terrain::sim::families;
+    use rover_terrain::{Decision, Pipeline};
+    use rover_terrain_drivers::DepthFrame;
+    // Two stones in one track, the second 5-15 cm behind the first and beside it: the
+    // track's cells rise 7-9 cm and stay up for a stone and a half, which a plane fit
+    // reads as a face steeper than the rover climbs. A wheel climbs them as steps.
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(205);
+    let mut not_go = Vec::new();
+    for i in 0..32 {
+        let rig = families::Rig::random(&mut rng);
+        let c = &rig.config;
+        let span = families::judged_span(c);
+        let tall = i % 2 == 1;
+        let (h, side) = (
+            if tall { (0.15, 0.2) } else { (0.07, 0.09) },
+            if rng.gen_bool(0.5) { 1.0 } else { -1.0 },
+        );
+        let x = rng.gen_range(span.start..(span.end - 0.3).max(span.start + 0.01));
+        let (r1, r2) = (rng.gen_range(0.06..0.1), rng.gen_range(0.06..0.1));
+        let y1 = side * rng.gen_range(0.35..0.55);
+        let y2 = y1 - side * (r1 + r2 + 0.01);
+        let dx = rng.gen_range(0.05..0.15);
+        let rock =
+            |x_m: f64, y_m: f64, radius_m: f64, rng: &mut rand_chacha::ChaCha8Rng| Element::Rock {
+                x_m,
+                y_m,
+                radius_m,
+                height_m: rng.gen_range(h.0..h.1),
+            };
+        let terrain = Terrain::new(vec![
+            rock(x, y1, r1, &mut rng),
+            rock(x + dx, y2, r2, &mut rng),
+        ]);
+        let r = rig_of(c);
+        let frame = DepthFrame::from_pixels(r.width, r.height, exact(&terrain, &r));
+        let v = Pipeline::new(c.clone())
+            .unwrap()
+            .process(&frame)
+            .unwrap()
+            .clone();
+        let why = format!("#{i} {:?} on {:?}: {v:?}", terrain.elements, c.mount);
+        if tall {
+            assert_ne!(v.decision, Decision::Go, "{why}");
+        } else if v.decision != Decision::Go {
+            not_go.push(why);
+        }
+    }
+    assert!(not_go.is_empty(), "{not_go:#?}");
 }

@@ -387,7 +387,18 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
     };
     let (affected, face) = one_face_or_nearer(f, onset, use_cell, affected);
     let plane = face.map(|face| face.plane);
-    let (at_ref, gradient, alpha, nearest) = measures(f, onset, plane, affected);
+    let (mut at_ref, mut gradient, mut alpha, mut nearest) = measures(f, onset, plane, affected);
+    // A face too steep for a slope, seen whole (ground beyond it) and standing nowhere
+    // a wheel radius off the rover's ground, is a low step: a wheel climbs it as one,
+    // whatever its flank (two 8 cm pebbles one behind the other in a track fitted as
+    // a 40° face stopped the rover on flat ground). Measured as one, from the onsets.
+    let too_steep = (f.cfg.rover.max_slope_deg..90.0).contains(&gradient.abs());
+    if too_steep
+        && face.is_some_and(|face| !face.to_view_end)
+        && relief_past_onsets(f, onset, affected) < f.cfg.rover.wheel_radius_m as f32
+    {
+        (at_ref, gradient, alpha, nearest) = measures(f, onset, None, affected);
+    }
     let sd = match face {
         Some(face) if face.to_view_end && gradient.abs() < 90.0 => {
             let ground = ground_spread(f, onset, affected, &face.plane).unwrap_or(face.spread_m);
@@ -418,6 +429,29 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
         alpha_deg: matches!(workcase, 4 | 6 | 7).then_some(alpha as f32),
     };
     (feature, sd)
+}
+
+/// The farthest the ground departs from the rover's own (z = 0) the face's way, past
+/// the onsets of the affected tracks' strips, metres: the highest top for a rise, the
+/// deepest low for a fall, over the seen cells below the sensor's horizon.
+fn relief_past_onsets(f: &Frame, onset: &[Option<Onset>], a: Affected) -> f32 {
+    let s = f.spec;
+    let mut relief = 0.0f32;
+    for iy in (0..s.ny).filter(|&iy| a.chosen(f, iy)) {
+        let Some(o) = onset[iy].filter(|o| o.dir == a.dir) else {
+            continue;
+        };
+        for c in (o.ix..s.nx).map(|ix| s.cell(ix, iy)) {
+            if f.seen[c] && !f.past[c] {
+                let cell = &f.cells[c];
+                relief = relief.max(match a.dir {
+                    Dir::Up => cell.top,
+                    Dir::Down => -cell.low,
+                });
+            }
+        }
+    }
+    relief
 }
 
 /// How far a face's measured gradient (`gradient_deg`) may be off on rough ground,

@@ -4,7 +4,7 @@
 //! renderer and the analysis with it; `EXACT=1` makes the `sweep` example draw with it.
 //!
 //! The terrain is the sim's `Element`s, read from their documentation by [`planar`]
-//! (ramps, capped or not, steps, drop-offs and blocks over regions that do not
+//! (ramps, capped or not, steps, drop-offs, blocks and rocks over regions that do not
 //! overlap), not through the sim's height field.
 #![allow(dead_code)]
 
@@ -181,10 +181,13 @@ pub type Region = Box<dyn Fn(f64, f64) -> bool>;
 
 /// Ground made of planar pieces, z = a + b·x + c·y (metres), each over a region of the
 /// plane (the first piece whose region holds a point is the ground there; the last one
-/// holds everything), and vertical faces n·(x, y) = k wherever the height jumps.
+/// holds everything), vertical faces n·(x, y) = k wherever the height jumps, and rocks
+/// standing on flat ground.
 pub struct Ground {
     pieces: Vec<(Region, [f64; 3])>,
     faces: Vec<([f64; 2], f64)>,
+    /// Half-ellipsoids on z = 0: centre x, y, radius, height, metres.
+    rocks: Vec<[f64; 4]>,
 }
 
 impl Ground {
@@ -192,6 +195,7 @@ impl Ground {
         Ground {
             pieces: vec![(Box::new(|_, _| true), [0.0; 3])],
             faces: Vec::new(),
+            rocks: Vec::new(),
         }
     }
 
@@ -241,6 +245,22 @@ impl Ground {
                 best = t;
             }
         }
+        for &[cx, cy, r, h] in &self.rocks {
+            // In units of the rock's radii it is the upper half of the unit sphere:
+            // |q + t·e|² = 1 with q, e the ray's origin and direction so scaled.
+            let q = [(o[0] - cx) / r, (o[1] - cy) / r, o[2] / h];
+            let e = [d[0] / r, d[1] / r, d[2] / h];
+            let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            let (a, b, c) = (dot(e, e), dot(q, e), dot(q, q) - 1.0);
+            let disc = b * b - a * c;
+            if disc < 0.0 {
+                continue;
+            }
+            let t = (-b - disc.sqrt()) / a;
+            if t > 0.0 && t < best && at(t)[2] >= 0.0 {
+                best = t;
+            }
+        }
         let mm = (best * 1000.0).round();
         if best <= 10.0 && (1.0..=65535.0).contains(&mm) {
             mm as u16
@@ -260,8 +280,9 @@ impl Ground {
     }
 }
 
-/// The sim's terrain as planar pieces, where it is made only of ramps (capped or not),
-/// steps, drop-offs and blocks over regions that do not overlap; `None` otherwise.
+/// The sim's terrain as planar pieces and rocks, where it is made only of ramps (capped
+/// or not), steps, drop-offs, blocks and rocks (half-ellipsoids) over regions that do
+/// not overlap; `None` otherwise.
 pub fn planar(terrain: &Terrain) -> Option<Ground> {
     let span = |e: Extent| match e {
         Extent::Full => (f64::NEG_INFINITY, f64::INFINITY),
@@ -270,9 +291,33 @@ pub fn planar(terrain: &Terrain) -> Option<Ground> {
         Extent::Band { from_m, to_m } => (from_m, to_m),
     };
     let mut ground = Ground::flat();
-    let mut taken: Vec<(f64, f64)> = Vec::new();
+    // Rocks stand on flat ground: apart from each other and from every other element.
+    for e in &terrain.elements {
+        if let Element::Rock {
+            x_m,
+            y_m,
+            radius_m,
+            height_m,
+        } = *e
+        {
+            let apart = ground
+                .rocks
+                .iter()
+                .all(|&[x, y, r, _]| (x - x_m).hypot(y - y_m) >= r + radius_m);
+            if !apart {
+                return None;
+            }
+            ground.rocks.push([x_m, y_m, radius_m, height_m]);
+        }
+    }
+    let mut taken: Vec<(f64, f64)> = ground
+        .rocks
+        .iter()
+        .map(|&[_, y, r, _]| (y - r, y + r))
+        .collect();
     for e in &terrain.elements {
         let (from, to) = match *e {
+            Element::Rock { .. } => continue,
             Element::Ramp { extent, .. } | Element::Step { extent, .. } => span(extent),
             Element::DropOff { .. } => span(Extent::Full),
             Element::Block { y_m, width_m, .. } => (y_m - width_m / 2.0, y_m + width_m / 2.0),
