@@ -23,8 +23,8 @@
 //! of the noisy frames' depth-edge pixels (`sim::FlyingPixels`, as time-of-flight
 //! cameras give). `EXACT=1` draws each frame with the second renderer of
 //! `tests/common/second_renderer.rs` (its own rays, exact planes and faces) instead of
-//! `sim::render`; scenes it cannot draw (rough ground, rocks) are skipped, and the last
-//! line counts them.
+//! `sim::render`; scenes it cannot draw (rough ground, stones, rocks on anything but
+//! flat ground) are skipped, and the last line counts them.
 
 #[path = "../tests/common/second_renderer.rs"]
 mod second;
@@ -138,7 +138,7 @@ fn main() {
         total - failures
     );
     if exact {
-        println!("{not_drawn} scenes not drawn (not made of planes)");
+        println!("{not_drawn} scenes not drawn (not made of planes and rocks)");
     }
     if mode == "oblique" {
         println!(

@@ -5,16 +5,18 @@
 //! the principal point, optical depth against range) would be drawn and analysed alike,
 //! and every sweep would pass. This file shares neither: it builds each pixel's ray from
 //! the README's formulas (FOV model, pinhole, URDF rpy, depth along the optical axis)
-//! with its own rotations, and meets piecewise-planar terrain with vertical faces
-//! exactly, by intersecting every plane and face. Then:
+//! with its own rotations, and meets piecewise-planar terrain with vertical faces and
+//! half-ellipsoid rocks exactly, by intersecting every plane, face and rock. Then:
 //! - on random mounts and cameras over the ranges, the two renderers agree pixel
-//!   for pixel on one-track ramps, ground falling away beside a track and steps under a
-//!   track;
+//!   for pixel on one-track ramps, ground falling away beside a track, steps under a
+//!   track and rocks;
 //! - as a user would, its frames of the scenes go to the real binary as 16-bit
 //!   PNGs with a hand-written config, and come back go (or stop) as they should;
-//! - random draws of the scene families made of planes (one-track ramps and descents,
-//!   ramps out of view, ground falling away beside a track, two ramps) and of
-//!   impassable edges, on random rigs, drawn by it, pass the families' own bars.
+//! - random draws of the scene families made of planes and rocks (one-track ramps and
+//!   descents, ramps out of view, ground falling away beside a track, two ramps, rocks
+//!   under the belly), of pebble fields on flat ground and of impassable edges, on
+//!   random rigs, drawn by it, pass their bars; so do two pebbles one behind the other
+//!   in a track (go), and two rocks so (stop).
 //!
 //! The renderer is in `common/second_renderer.rs`.
 
