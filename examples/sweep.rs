@@ -35,7 +35,6 @@ use rover_terrain::analysis::GRAZING_DEG;
 use rover_terrain::sim::{self, families, random, Expectation, KinectNoise, Terrain, Tolerance};
 use rover_terrain::validate::{compare, CLEAN, NOISY};
 use rover_terrain::{Config, Decision, Pipeline};
-use rover_terrain_drivers::DepthFrame;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -62,12 +61,11 @@ fn main() {
         }
         let mut pipeline = Pipeline::new(config.clone()).expect("config works");
         let frame = if exact {
-            let Some(ground) = second::planar(&terrain) else {
+            let Some(frame) = second::frame(&terrain, &config) else {
                 not_drawn += 1;
                 continue;
             };
-            let rig = second::rig_of(&config);
-            DepthFrame::from_pixels(rig.width, rig.height, ground.render(&rig))
+            frame
         } else {
             sim::render(&terrain, &config)
         };

@@ -25,6 +25,7 @@ use std::process::Command;
 
 use rand::{Rng, SeedableRng};
 use rover_terrain::sim::{self, Element, Extent, Terrain};
+use rover_terrain::{Config, Pipeline, Verdict};
 use serde_json::Value;
 
 #[path = "common/second_renderer.rs"]
@@ -149,11 +150,22 @@ fn exact(terrain: &Terrain, rig: &Rig) -> Vec<u16> {
         .render(rig)
 }
 
+/// The verdict on the second renderer's frame of `terrain` as `config`'s camera sees it.
+fn verdict_of(terrain: &Terrain, config: &Config) -> Verdict {
+    let frame = second::frame(terrain, config)
+        .unwrap_or_else(|| panic!("planar terrain: {:?}", terrain.elements));
+    Pipeline::new(config.clone())
+        .unwrap()
+        .process(&frame)
+        .unwrap()
+        .clone()
+}
+
 #[test]
 fn hand_cases_of_the_second_renderer() {
     // Flat ground, a camera pitched 30° at 0.8 m: the centre ray meets it 0.8/sin 30°
     // along the axis, optical depth 1.6 m.
-    let rig = Rig::kinect();
+    let rig = rig_of(&Config::default());
     let at = |t: &Terrain, rig: &Rig, u, v| planar(t).unwrap().depth_mm(rig.at, rig.ray(u, v));
     assert_eq!(at(&Terrain::flat(), &rig, 320, 240), 1600);
     // A wall 1 m ahead of a level camera: optical depth 1 m anywhere on it.
@@ -322,7 +334,7 @@ fn analyze(dir: &Path, name: &str, rig: &Rig, depth: &[u16]) -> Value {
 #[test]
 fn the_issues_scenes_drawn_by_the_second_renderer_are_go_through_the_binary() {
     let dir = tempfile::tempdir().unwrap();
-    let kinect = Rig::kinect();
+    let kinect = rig_of(&Config::default());
     let low_wide = Rig {
         at: [0.1, -0.05, 0.55],
         rpy: [-6.0, 20.0, 5.0],
@@ -436,8 +448,7 @@ fn random_draws_of_the_issues_families_drawn_by_the_second_renderer_pass() {
     use rover_terrain::sim::random::edge_scene_within;
     use rover_terrain::sim::Expectation;
     use rover_terrain::validate::{compare, CLEAN};
-    use rover_terrain::{Decision, Pipeline};
-    use rover_terrain_drivers::DepthFrame;
+    use rover_terrain::Decision;
     // The families made of planes, vertical faces and rocks on flat ground.
     let drawn = [
         Family::OneTrackRamp,
@@ -485,13 +496,7 @@ fn random_draws_of_the_issues_families_drawn_by_the_second_renderer_pass() {
             grazing += 1;
             continue;
         }
-        let r = rig_of(c);
-        let frame = DepthFrame::from_pixels(r.width, r.height, exact(&terrain, &r));
-        let v = Pipeline::new(c.clone())
-            .unwrap()
-            .process(&frame)
-            .unwrap()
-            .clone();
+        let v = verdict_of(&terrain, c);
         let why = format!("#{i} {:?} on {:?}: {v:?}", terrain.elements, c.mount);
         if expect.verdict == Decision::Go {
             let fails = compare(&expect, &CLEAN, &v);
@@ -513,8 +518,7 @@ fn random_draws_of_the_issues_families_drawn_by_the_second_renderer_pass() {
 #[test]
 fn pebbles_one_behind_another_in_a_track_are_go_and_rocks_so_are_stop() {
     use rover_terrain::sim::families;
-    use rover_terrain::{Decision, Pipeline};
-    use rover_terrain_drivers::DepthFrame;
+    use rover_terrain::Decision;
     // Two stones in one track, the second 5-15 cm behind the first and beside it: the
     // track's cells rise 7-9 cm and stay up for a stone and a half, which a plane fit
     // reads as a face steeper than the rover climbs. A wheel climbs them as steps.
@@ -545,13 +549,7 @@ fn pebbles_one_behind_another_in_a_track_are_go_and_rocks_so_are_stop() {
             rock(x, y1, r1, &mut rng),
             rock(x + dx, y2, r2, &mut rng),
         ]);
-        let r = rig_of(c);
-        let frame = DepthFrame::from_pixels(r.width, r.height, exact(&terrain, &r));
-        let v = Pipeline::new(c.clone())
-            .unwrap()
-            .process(&frame)
-            .unwrap()
-            .clone();
+        let v = verdict_of(&terrain, c);
         let why = format!("#{i} {:?} on {:?}: {v:?}", terrain.elements, c.mount);
         if tall {
             assert_ne!(v.decision, Decision::Go, "{why}");

@@ -11,6 +11,7 @@
 use rand::Rng;
 use rover_terrain::sim::{Element, Extent, Terrain};
 use rover_terrain::Config;
+use rover_terrain_drivers::DepthFrame;
 
 /// The camera: image size and intrinsics, pixels and degrees.
 #[derive(Debug, Clone, Copy)]
@@ -40,21 +41,6 @@ pub struct Rig {
 }
 
 impl Rig {
-    /// The default: a Kinect v1 0.8 m high, pitched 30°.
-    pub fn kinect() -> Rig {
-        Rig {
-            width: 640,
-            height: 480,
-            lens: Lens::Fov {
-                hfov: 57.0,
-                vfov: 43.0,
-            },
-            at: [0.0, 0.0, 0.8],
-            rpy: [0.0, 30.0, 0.0],
-            min_range: 0.4,
-        }
-    }
-
     /// A random mount and camera over the ranges, `scale` times the size.
     pub fn random(rng: &mut impl Rng, scale: f64) -> Rig {
         let (w, h, lens) = match rng.gen_range(0..4) {
@@ -380,6 +366,18 @@ pub fn planar(terrain: &Terrain) -> Option<Ground> {
         }
     }
     Some(ground)
+}
+
+/// The frame `config`'s camera sees of `terrain`, drawn by this renderer; `None` where
+/// [`planar`] cannot draw the terrain.
+pub fn frame(terrain: &Terrain, config: &Config) -> Option<DepthFrame> {
+    let rig = rig_of(config);
+    let ground = planar(terrain)?;
+    Some(DepthFrame::from_pixels(
+        rig.width,
+        rig.height,
+        ground.render(&rig),
+    ))
 }
 
 /// The rig a config describes, read field by field.
