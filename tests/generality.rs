@@ -1669,3 +1669,136 @@ fn mixed_pixels_beside_ground_falling_away_make_no_stop_and_a_drop_there_still_s
         filtered_fails.len()
     );
 }
+
+#[test]
+fn a_rock_whose_front_the_view_ends_on_is_never_go() {
+    // `sweep -- families 300 2 random` #274: a D435-like camera 0.65 m high, pitched
+    // 43° and rolled 5°, sees a smooth 15° ramp end its view at 2.0 m under the right
+    // track, where a 15.5 cm rock stands from 2.02 m. The image's top edge cuts the
+    // rock's first 3-5 cm: under the steep-exit test's 5 cm, and the line from the
+    // climb's foot a wheelbase back is the ramp's. Go, workcase 2.
+    let mut c = mounted([0.295, -0.0083, 0.646], [5.362, 43.402, -7.327]);
+    c.camera.width = 848;
+    c.camera.height = 480;
+    c.camera.hfov_deg = 89.238;
+    c.camera.vfov_deg = 58.372;
+    c.camera.fx = Some(429.676);
+    c.camera.fy = Some(428.103);
+    c.camera.cx = Some(411.713);
+    c.camera.cy = Some(229.687);
+    c.camera.min_range_m = 0.3564;
+    let ramp = Element::ramp(1.7354, 0.0, 15.438, 0.0, Extent::Full);
+    let rock = Element::Rock {
+        x_m: 2.2108,
+        y_m: -0.4693,
+        radius_m: 0.1906,
+        height_m: 0.1548,
+    };
+    assert_never_go(&[ramp.clone(), rock], &c, [274, 5], Side::Right);
+    assert_eq!(analyse(vec![ramp], &c).decision, Decision::Go);
+
+    // Random rigs: a smooth climbable ramp (or flat ground) whose view ends in the
+    // corridor, and a 15-20 cm rock in a track whose front lies up to 0.1 m before
+    // where the view of the ground alone ends there. The ground alone must be go;
+    // with the rock, a frame that sees the rock rise 5 cm or more (the steep-exit
+    // test's least rise) across 15 cm of the track must not be.
+    use rand::{Rng, SeedableRng};
+    use rover_terrain::sim::{families, Terrain};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(274);
+    let (mut judged, mut tried) = (0, 0);
+    while judged < 16 && tried < 400 {
+        tried += 1;
+        let c = families::Rig::random(&mut rng).config;
+        let (_, end) = families::footprint(&c);
+        if !families::view_ends_in_corridor(end, &c) {
+            continue;
+        }
+        let gradient = if rng.gen_bool(0.3) {
+            0.0
+        } else {
+            rng.gen_range(8.0..22.0)
+        };
+        let toe = end - rng.gen_range(0.5..0.9);
+        let ground = Element::ramp(toe, 0.0, gradient, 0.0, Extent::Full);
+        let alone = analyse(vec![ground.clone()], &c);
+        assert_eq!(alone.decision, Decision::Go, "{ground:?} on {:?}", c.mount);
+        let track = c.rover.track_centre_m();
+        let (y, seen_to, side) = if rng.gen_bool(0.5) {
+            (track, alone.seen_to_m.left, Side::Left)
+        } else {
+            (-track, alone.seen_to_m.right, Side::Right)
+        };
+        if f64::from(seen_to) > c.analysis.corridor_length_m - 0.15 {
+            continue;
+        }
+        let radius_m = rng.gen_range(0.15..0.2);
+        let rock = Element::Rock {
+            x_m: f64::from(seen_to) - rng.gen_range(0.0..0.1) + radius_m,
+            y_m: y + rng.gen_range(-0.08..0.08),
+            radius_m,
+            height_m: rng.gen_range(0.15..0.2),
+        };
+        let scene = vec![ground.clone(), rock.clone()];
+        let clean = rover_terrain::sim::render(&Terrain::new(scene.clone()), &c);
+        if seen_front_width(&clean, &ground, &rock, &c) < 0.15 {
+            continue;
+        }
+        let mut noisy = clean.clone();
+        rover_terrain::sim::KinectNoise {
+            seed: tried,
+            ..Default::default()
+        }
+        .apply(&mut noisy, c.camera.hfov_deg);
+        let mut pipeline = rover_terrain::Pipeline::new(c.clone()).unwrap();
+        for frame in [&clean, &noisy] {
+            let v = pipeline.process(frame).unwrap();
+            assert_ne!(
+                v.decision,
+                Decision::Go,
+                "{scene:?} on {:?} {}x{}: {:?}",
+                c.mount,
+                c.camera.width,
+                c.camera.height,
+                v.feature
+            );
+            assert!(
+                v.hazards.iter().any(|h| h.side == side),
+                "{scene:?}: {:?}",
+                v.hazards
+            );
+        }
+        judged += 1;
+    }
+    assert_eq!(judged, 16, "{tried} rigs tried");
+}
+
+/// How wide the camera of `c` sees `rock` (standing on `ground`) rise 5 cm or more
+/// over the ground alone in `frame`, its clean frame of both, metres: the number of
+/// 5 cm wide stripes along x in which a point on the rock stands that high, times
+/// 5 cm. From the frame's pixels and the rig's geometry only.
+fn seen_front_width(
+    frame: &rover_terrain_drivers::DepthFrame,
+    ground: &Element,
+    rock: &Element,
+    c: &Config,
+) -> f64 {
+    use rover_terrain::sim::Terrain;
+    const STRIPE_M: f64 = 0.05;
+    let bare = Terrain::new(vec![ground.clone()]);
+    let scene = Terrain::new(vec![ground.clone(), rock.clone()]);
+    let p = rover_terrain::projection::Projector::new(c, frame.width(), frame.height());
+    let mut stripes = std::collections::BTreeSet::new();
+    for (i, &d) in frame.pixels().iter().enumerate() {
+        if d == 0 {
+            continue;
+        }
+        let q = p.point(i % frame.width(), i / frame.width(), f64::from(d) / 1000.0);
+        let (top, under) = (scene.height(q.x, q.y), bare.height(q.x, q.y));
+        // On the drawn surface (within the depth's millimetre and the renderer's
+        // step), on the rock, 5 cm or more above the ground alone.
+        if (q.z - top).abs() < 0.01 && top - under > 0.005 && q.z - under >= 0.05 {
+            stripes.insert((q.y / STRIPE_M).floor() as i64);
+        }
+    }
+    stripes.len() as f64 * STRIPE_M
+}

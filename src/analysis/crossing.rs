@@ -397,6 +397,8 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// Such cells rising [`STEEP_EXIT_RISE_M`] or more in [`SPREAD_TALL_STRIPS`] strips
 /// count however wide the band: a 21 cm step under a track, seen rising 5-6 cm in
 /// three strips where a rolled camera's view ends across it, was a noisy go.
+/// On smooth ground a front the view ends on within its first centimetres counts
+/// from a smaller bend ([`bends_up`], in [`BENT_STRIPS`] inner strips).
 /// A ramp rising out of view at a passable slope is not this: it stays go, measured.
 /// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
 /// out of view in them.
@@ -408,6 +410,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         let (mut tall, mut short, mut nearest) = (0usize, 0usize, f32::INFINITY);
         let (mut short_nearest, mut inner) = (f32::INFINITY, 0usize);
         let (mut any_tall, mut any_nearest) = (0usize, f32::INFINITY);
+        let (mut bent, mut bent_nearest) = (0usize, f32::INFINITY);
         for iy in inner_strips(f, region) {
             inner += 1;
             let ground = |ix: usize| {
@@ -476,6 +479,10 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .chain(climb)
                 .chain(cut.map(|c| (c.crest_xy[0], c.crest)));
             let steep = face || line_fit(points).is_some_and(|(p, _)| p.a as f32 >= tan_max);
+            if let Some(x) = bends_up(f, iy, h, before(), tan_max) {
+                bent += 1;
+                bent_nearest = bent_nearest.min(x);
+            }
             if !steep && !spread {
                 continue;
             }
@@ -494,6 +501,8 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             (true, nearest)
         } else if any_tall >= SPREAD_TALL_STRIPS {
             (true, any_nearest)
+        } else if bent >= BENT_STRIPS {
+            (true, bent_nearest)
         } else {
             (broad(short, inner), short_nearest)
         };
@@ -511,6 +520,72 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         });
     }
 }
+
+/// Where strip `iy`'s view ends (`h`, its first cut cell) on smooth ground, whether
+/// the cut cells show a rise steeper than the rover climbs: the x of the last ground
+/// cell before it, metres, or `None`.
+///
+/// `before` is the strip's ground over the wheelbase before `h`, nearest first. When
+/// its last [`SMOOTH_GROUND_CELLS`] lie on one line within [`SMOOTH_GROUND_RMS_M`]
+/// (no bumps that steepen a short stretch), one of the first three cut cells counts
+/// when its top stands [`BEND_RISE_M`] or more above that line carried to the cell's
+/// far edge (off the ground the strip was on), and above the line where the cut
+/// begins by more than the slope limit `tan_max` climbs from there to the cell's far
+/// edge (the gentlest the rise can be, the ground reaching the cut on its line).
+/// That is the front of a rock, a wall or a ramp too steep, cut by the image's top
+/// edge after its first few centimetres: a 15 cm rock on a smooth 15° ramp, seen
+/// rising 3-5 cm before the view ends, was a go. Its height is not seen, so a 9 cm
+/// pebble there looks the same.
+fn bends_up(
+    f: &Frame,
+    iy: usize,
+    h: usize,
+    before: impl Iterator<Item = (f32, f32)> + Clone,
+    tan_max: f32,
+) -> Option<f32> {
+    let s = f.spec;
+    let (last_x, _) = before.clone().next()?;
+    let last_cells = before.take(SMOOTH_GROUND_CELLS);
+    if last_cells.clone().count() < SMOOTH_GROUND_CELLS {
+        return None;
+    }
+    let (line, rms) = line_fit(last_cells)?;
+    if rms > f64::from(SMOOTH_GROUND_RMS_M) {
+        return None;
+    }
+    let on_line = |x: f32| line.z(f64::from(x), 0.0) as f32;
+    let near = s.x_centre(h) - 0.5 * s.voxel_m;
+    let bends = (h..(h + 3).min(s.nx)).any(|ix| {
+        let c = s.cell(ix, iy);
+        let far = s.x_centre(ix) + 0.5 * s.voxel_m;
+        let top = f.cells[c].top;
+        f.seen[c]
+            && f.past[c]
+            && top - on_line(far) >= BEND_RISE_M
+            && top - on_line(near) >= tan_max * (far - near)
+    });
+    bends.then_some(last_x)
+}
+
+/// Most RMS of a strip's last ground cells about their line for [`bends_up`] to take
+/// them for smooth, metres. Cells average rough ground's bumps (±2.5 cm, 10-20 cm
+/// long), and over 25 cm their means can lie within 2-3 mm of a line (a 20° rough
+/// ramp's belly strips did, and a bump at the view's end was a false stop); a smooth
+/// ramp's lie within 0.4 mm, depth noise included, where a D435-like camera sees them
+/// at 2 m.
+const SMOOTH_GROUND_RMS_M: f32 = 0.001;
+/// How many ground cells before the view's end [`bends_up`] fits its line to: 25 cm
+/// at the default voxel, longer than rough ground's bumps.
+const SMOOTH_GROUND_CELLS: usize = 5;
+/// Least height of a cut cell's top above the smooth ground's line for [`bends_up`],
+/// metres. The ground carried on into the cell has its top at or under the line at
+/// the cell's far edge; 2 cm leaves room for depth noise, and a rock's front cut
+/// after its first centimetres stands 2-5 cm above it.
+const BEND_RISE_M: f32 = 0.02;
+/// Fewest inner strips of a band whose view ends bending up steeply on smooth ground
+/// ([`bends_up`]) for [`steep_exit`] to take it for an unseen front: 15 cm, so one
+/// or two strips of noise do not count.
+const BENT_STRIPS: usize = 3;
 
 /// Least rise from a climb's foot to the top of the cut cells the view ends in for
 /// [`steep_exit`], metres: more than rough ground's peak to peak (±2.5 cm).
