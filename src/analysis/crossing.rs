@@ -4,7 +4,7 @@
 
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region, StripCell};
-use crate::grid::Cell;
+use crate::grid::{Cell, GridSpec};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
 /// Steps and slopes in the wheel tracks.
@@ -442,14 +442,13 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 continue;
             };
             let cut = (h..(h + 3).min(s.nx))
-                .map(|ix| &f.cells[s.cell(ix, iy)])
-                .zip(h..)
-                .filter(|&(_, ix)| {
-                    let c = s.cell(ix, iy);
-                    f.seen[c] && f.past[c]
-                })
-                .map(|(c, _)| c);
-            let top = cut.clone().map(|c| c.top).fold(f32::NEG_INFINITY, f32::max);
+                .map(|ix| (ix, s.cell(ix, iy)))
+                .filter(|&(_, c)| f.seen[c] && f.past[c])
+                .map(|(ix, c)| (ix, &f.cells[c]));
+            let top = cut
+                .clone()
+                .map(|(_, c)| c.top)
+                .fold(f32::NEG_INFINITY, f32::max);
             let rise = top - foot.1;
             if rise < STEEP_EXIT_SHORT_RISE_M {
                 continue;
@@ -460,7 +459,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             // and the cut cells' upper surface on one line steeper than the limit (a
             // face the cell boundary splits, a steep ramp).
             let spans = |c: &Cell| c.top - c.low >= STEEP_EXIT_RISE_M;
-            let face = cut.clone().any(|c| {
+            let face = cut.clone().any(|(_, c)| {
                 let (dx, dy) = (c.crest_xy[0] - c.foot_xy[0], c.crest_xy[1] - c.foot_xy[1]);
                 spans(c) && dx > dy.abs()
             });
@@ -469,7 +468,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             // of its own; its points not hugging one side of the cell, it is not
             // along the strip. Counted only where most of the band shows a front.
             let y_mid = s.y_centre(iy);
-            let spread = cut.clone().any(|c| {
+            let spread = cut.clone().any(|(_, c)| {
                 spans(c)
                     && c.crest_xy == c.foot_xy
                     && (c.y - y_mid).abs() < FACE_OFF_VOXELS * s.voxel_m
@@ -477,9 +476,9 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             let climb = before().take_while(|&(x, _)| x > foot.0);
             let points = std::iter::once(foot)
                 .chain(climb)
-                .chain(cut.map(|c| (c.crest_xy[0], c.crest)));
+                .chain(cut.clone().map(|(_, c)| (c.crest_xy[0], c.crest)));
             let steep = face || line_fit(points).is_some_and(|(p, _)| p.a as f32 >= tan_max);
-            if let Some(x) = bends_up(f, iy, h, before(), tan_max) {
+            if let Some(x) = bends_up(s, h, before(), cut, tan_max) {
                 bent += 1;
                 bent_nearest = bent_nearest.min(x);
             }
@@ -521,11 +520,12 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     }
 }
 
-/// Where strip `iy`'s view ends (`h`, its first cut cell) on smooth ground, whether
-/// the cut cells show a rise steeper than the rover climbs: the x of the last ground
-/// cell before it, metres, or `None`.
+/// Where a strip's view ends (`h`, its first cut cell) on smooth ground, whether the
+/// cut cells show a rise steeper than the rover climbs: the x of the last ground cell
+/// before it, metres, or `None`.
 ///
-/// `before` is the strip's ground over the wheelbase before `h`, nearest first. When
+/// `before` is the strip's ground over the wheelbase before `h`, nearest first; `cut`
+/// its seen cells among the first three from `h`, with their column. When
 /// its last [`SMOOTH_GROUND_CELLS`] lie on one line within [`SMOOTH_GROUND_RMS_M`]
 /// (no bumps that steepen a short stretch), one of the first three cut cells counts
 /// when its top stands [`BEND_RISE_M`] or more above that line carried to the cell's
@@ -536,14 +536,13 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// edge after its first few centimetres: a 15 cm rock on a smooth 15° ramp, seen
 /// rising 3-5 cm before the view ends, was a go. Its height is not seen, so a 9 cm
 /// pebble there looks the same.
-fn bends_up(
-    f: &Frame,
-    iy: usize,
+fn bends_up<'c>(
+    s: &GridSpec,
     h: usize,
     before: impl Iterator<Item = (f32, f32)> + Clone,
+    mut cut: impl Iterator<Item = (usize, &'c Cell)>,
     tan_max: f32,
 ) -> Option<f32> {
-    let s = f.spec;
     let (last_x, _) = before.clone().next()?;
     let last_cells = before.take(SMOOTH_GROUND_CELLS);
     if last_cells.clone().count() < SMOOTH_GROUND_CELLS {
@@ -555,14 +554,9 @@ fn bends_up(
     }
     let on_line = |x: f32| line.z(f64::from(x), 0.0) as f32;
     let near = s.x_centre(h) - 0.5 * s.voxel_m;
-    let bends = (h..(h + 3).min(s.nx)).any(|ix| {
-        let c = s.cell(ix, iy);
+    let bends = cut.any(|(ix, c)| {
         let far = s.x_centre(ix) + 0.5 * s.voxel_m;
-        let top = f.cells[c].top;
-        f.seen[c]
-            && f.past[c]
-            && top - on_line(far) >= BEND_RISE_M
-            && top - on_line(near) >= tan_max * (far - near)
+        c.top - on_line(far) >= BEND_RISE_M && c.top - on_line(near) >= tan_max * (far - near)
     });
     bends.then_some(last_x)
 }
