@@ -4,7 +4,7 @@
 //! stops. Every frame is rendered here from its geometry; expectations come from the
 //! geometry and the rover's limits.
 
-use rover_terrain::sim::{Element, Extent};
+use rover_terrain::sim::{Element, Extent, StoneShape};
 use rover_terrain::{Config, Decision, HazardKind, Side, Verdict};
 
 #[path = "common/scenes.rs"]
@@ -1697,9 +1697,29 @@ fn a_rock_whose_front_the_view_ends_on_is_never_go() {
     assert_never_go(&[ramp.clone(), rock], &c, [274, 5], Side::Right);
     assert_eq!(analyse(vec![ramp], &c).decision, Decision::Go);
 
+    // `sweep -- natural 120 5102 random` #10: a Kinect v1 0.73 m high, pitched 42°,
+    // rolled -8° and yawed 6°, sees a smooth 10° ramp end its view at 1.7-1.8 m under
+    // the left track, where a 19 cm Gaussian mound rises from about 1.63 m. Its front
+    // climbs 8 cm over the ramp in the two cells before the cut, steeper than the
+    // limit, but the line from the climb's foot, on the ramp a wheelbase back, is
+    // gentler, and the rise from there is 10.7 cm: under a wheel radius. Go.
+    let mut c = mounted([0.2933, -0.0337, 0.7277], [-8.238, 42.029, 5.646]);
+    c.camera.min_range_m = 0.4656;
+    let ramp = Element::ramp(1.4429, 0.0, 10.293, 0.0, Extent::Full);
+    let mound = Element::Stone {
+        x_m: 1.7778,
+        y_m: 0.4426,
+        radius_m: 0.1755,
+        height_m: 0.1922,
+        shape: StoneShape::Mound,
+    };
+    assert_never_go(&[ramp.clone(), mound], &c, [5102, 10], Side::Left);
+    assert_eq!(analyse(vec![ramp], &c).decision, Decision::Go);
+
     // Random rigs: a smooth climbable ramp (or flat ground) whose view ends in the
-    // corridor, and a 15-20 cm rock in a track whose front lies up to 0.1 m before
-    // where the view of the ground alone ends there. The ground alone must be go;
+    // corridor, and a 15-20 cm rock or stone of any shape in a track whose rim lies
+    // up to 0.2 m before where the view of the ground alone ends there. The ground
+    // alone must be go;
     // with the rock, a frame that sees the rock rise 5 cm or more (the steep-exit
     // test's least rise) across 15 cm of the track must not be.
     use rand::{Rng, SeedableRng};
@@ -1732,11 +1752,25 @@ fn a_rock_whose_front_the_view_ends_on_is_never_go() {
             continue;
         }
         let radius_m = rng.gen_range(0.15..0.2);
-        let rock = Element::Rock {
-            x_m: f64::from(seen_to) - rng.gen_range(0.0..0.1) + radius_m,
-            y_m: y + rng.gen_range(-0.08..0.08),
-            radius_m,
-            height_m: rng.gen_range(0.15..0.2),
+        let (x_m, y_m) = (
+            f64::from(seen_to) - rng.gen_range(0.0..0.2) + radius_m,
+            y + rng.gen_range(-0.08..0.08),
+        );
+        let height_m = rng.gen_range(0.15..0.2);
+        let rock = match rng.gen_range(0..=StoneShape::ALL.len()) {
+            0 => Element::Rock {
+                x_m,
+                y_m,
+                radius_m,
+                height_m,
+            },
+            k => Element::Stone {
+                x_m,
+                y_m,
+                radius_m,
+                height_m,
+                shape: StoneShape::ALL[k - 1],
+            },
         };
         let scene = vec![ground.clone(), rock.clone()];
         let clean = rover_terrain::sim::render(&Terrain::new(scene.clone()), &c);

@@ -4,7 +4,7 @@
 
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region, StripCell};
-use crate::grid::{Cell, GridSpec};
+use crate::grid::Cell;
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
 /// Steps and slopes in the wheel tracks.
@@ -478,7 +478,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .chain(climb)
                 .chain(cut.clone().map(|(_, c)| (c.crest_xy[0], c.crest)));
             let steep = face || line_fit(points).is_some_and(|(p, _)| p.a as f32 >= tan_max);
-            if let Some(x) = bends_up(s, h, before(), cut, tan_max) {
+            if let Some(x) = bends_up(f, iy, h, before(), cut, tan_max) {
                 bent += 1;
                 bent_nearest = bent_nearest.min(x);
             }
@@ -522,43 +522,57 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 
 /// Where a strip's view ends (`h`, its first cut cell) on smooth ground, whether the
 /// cut cells show a rise steeper than the rover climbs: the x of the last ground cell
-/// before it, metres, or `None`.
+/// on the smooth ground's line, metres, or `None`.
 ///
 /// `before` is the strip's ground over the wheelbase before `h`, nearest first; `cut`
-/// its seen cells among the first three from `h`, with their column. When
-/// its last [`SMOOTH_GROUND_CELLS`] lie on one line within [`SMOOTH_GROUND_RMS_M`]
-/// (no bumps that steepen a short stretch), one of the first three cut cells counts
+/// its seen cells among the first three from `h`, with their column. The front may
+/// begin up to [`FRONT_CELLS`] ground cells before the cut. For each such start, when
+/// the [`SMOOTH_GROUND_CELLS`] ground cells before it lie on one line within
+/// [`SMOOTH_GROUND_RMS_M`] (no bumps that steepen a short stretch), a cut cell counts
 /// when its top stands [`BEND_RISE_M`] or more above that line carried to the cell's
-/// far edge (off the ground the strip was on), and above the line where the cut
-/// begins by more than the slope limit `tan_max` climbs from there to the cell's far
-/// edge (the gentlest the rise can be, the ground reaching the cut on its line).
-/// That is the front of a rock, a wall or a ramp too steep, cut by the image's top
-/// edge after its first few centimetres: a 15 cm rock on a smooth 15° ramp, seen
-/// rising 3-5 cm before the view ends, was a go. Its height is not seen, so a 9 cm
-/// pebble there looks the same.
+/// far edge (off the ground the strip was on), above the line where the front begins
+/// by more than the slope limit `tan_max` climbs from there to the cell's far edge
+/// (the gentlest the rise can be), and [`FRONT_RISING_M`] or more above the front's
+/// cells before the cut (still rising where the view ends: a stone seen whole, its
+/// top before the cut, is the step test's). That is the front of a rock, a wall or a
+/// ramp too steep, cut by the image's top edge: a 15 cm rock on a smooth 15° ramp,
+/// seen rising 3-5 cm before the view ends, and a 19 cm mound on a 10° ramp, seen
+/// rising 8 cm over two cells and into the cut (10.7 cm from its foot, under a wheel
+/// radius), were each a go. Its height is not seen, so a 9 cm pebble there looks the
+/// same.
 fn bends_up<'c>(
-    s: &GridSpec,
+    f: &Frame,
+    iy: usize,
     h: usize,
     before: impl Iterator<Item = (f32, f32)> + Clone,
-    mut cut: impl Iterator<Item = (usize, &'c Cell)>,
+    cut: impl Iterator<Item = (usize, &'c Cell)> + Clone,
     tan_max: f32,
 ) -> Option<f32> {
-    let (last_x, _) = before.clone().next()?;
-    let last_cells = before.take(SMOOTH_GROUND_CELLS);
-    if last_cells.clone().count() < SMOOTH_GROUND_CELLS {
-        return None;
-    }
-    let (line, rms) = line_fit(last_cells)?;
-    if rms > f64::from(SMOOTH_GROUND_RMS_M) {
-        return None;
-    }
-    let on_line = |x: f32| line.z(f64::from(x), 0.0) as f32;
-    let near = s.x_centre(h) - 0.5 * s.voxel_m;
-    let bends = cut.any(|(ix, c)| {
-        let far = s.x_centre(ix) + 0.5 * s.voxel_m;
-        c.top - on_line(far) >= BEND_RISE_M && c.top - on_line(near) >= tan_max * (far - near)
-    });
-    bends.then_some(last_x)
+    let s = f.spec;
+    (0..=FRONT_CELLS).find_map(|lead| {
+        let window = before.clone().skip(lead).take(SMOOTH_GROUND_CELLS);
+        if window.clone().count() < SMOOTH_GROUND_CELLS {
+            return None;
+        }
+        let (line, rms) = line_fit(window.clone())?;
+        if rms > f64::from(SMOOTH_GROUND_RMS_M) {
+            return None;
+        }
+        let (last_x, _) = window.clone().next()?;
+        let end = h - 1 - lead;
+        let front_top = (end + 1..h)
+            .map(|ix| f.cells[s.cell(ix, iy)].top)
+            .fold(f32::NEG_INFINITY, f32::max);
+        let on_line = |x: f32| line.z(f64::from(x), 0.0) as f32;
+        let near = s.x_centre(end) + 0.5 * s.voxel_m;
+        let bends = cut.clone().any(|(ix, c)| {
+            let far = s.x_centre(ix) + 0.5 * s.voxel_m;
+            c.top - on_line(far) >= BEND_RISE_M
+                && c.top - on_line(near) >= tan_max * (far - near)
+                && c.top >= front_top + FRONT_RISING_M
+        });
+        bends.then_some(last_x)
+    })
 }
 
 /// Most RMS of a strip's last ground cells about their line for [`bends_up`] to take
@@ -568,9 +582,19 @@ fn bends_up<'c>(
 /// ramp's lie within 0.4 mm, depth noise included, where a D435-like camera sees them
 /// at 2 m.
 const SMOOTH_GROUND_RMS_M: f32 = 0.001;
-/// How many ground cells before the view's end [`bends_up`] fits its line to: 25 cm
-/// at the default voxel, longer than rough ground's bumps.
-const SMOOTH_GROUND_CELLS: usize = 5;
+/// How many ground cells before a front [`bends_up`] fits its line to: 20 cm at the
+/// default voxel. The ramp's own line before a front can be that short (a mound's
+/// rising 0.2 m past a 10° ramp's toe). With four cells, as with five, no verdict of
+/// the rough-ground sweeps changed (`sweep -- near_edge 400 30|36 rough`, `families`
+/// and `natural 88 179 random`, `families 300 2 random`, where 4 mm RMS over five
+/// cells had made a false stop).
+const SMOOTH_GROUND_CELLS: usize = 4;
+/// Most ground cells of a front that [`bends_up`] looks for between the smooth
+/// ground's line and the cut: 10 cm, a rock's or a mound's front.
+const FRONT_CELLS: usize = 2;
+/// Least height of a cut cell's top over the tops of the front's cells before the cut
+/// for [`bends_up`], metres: the front still rises where the view ends.
+const FRONT_RISING_M: f32 = 0.01;
 /// Least height of a cut cell's top above the smooth ground's line for [`bends_up`],
 /// metres. The ground carried on into the cell has its top at or under the line at
 /// the cell's far edge; 2 cm leaves room for depth noise, and a rock's front cut
