@@ -397,8 +397,8 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// Such cells rising [`STEEP_EXIT_RISE_M`] or more in [`SPREAD_TALL_STRIPS`] strips
 /// count however wide the band: a 21 cm step under a track, seen rising 5-6 cm in
 /// three strips where a rolled camera's view ends across it, was a noisy go.
-/// On smooth ground a front the view ends on within its first centimetres counts
-/// from a smaller bend ([`bends_up`], in [`BENT_STRIPS`] inner strips).
+/// On smooth ground a front the view ends on, seen from up to two cells before the
+/// cut, counts from a smaller bend ([`bends_up`], in [`BENT_STRIPS`] inner strips).
 /// A ramp rising out of view at a passable slope is not this: it stays go, measured.
 /// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
 /// out of view in them.
@@ -524,8 +524,9 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// cut cells show a rise steeper than the rover climbs: the x of the last ground cell
 /// on the smooth ground's line, metres, or `None`.
 ///
-/// `before` is the strip's ground over the wheelbase before `h`, nearest first; `cut`
-/// its seen cells among the first three from `h`, with their column. The front may
+/// `before` is the strip's ground over the wheelbase before `h`, one cell after the
+/// other from `h − 1` back (its k-th item is cell `h − 1 − k`); `cut` its seen cells
+/// among the first three from `h`, with their column. The front may
 /// begin up to [`FRONT_CELLS`] ground cells before the cut. For each such start, when
 /// the [`SMOOTH_GROUND_CELLS`] ground cells before it lie on one line within
 /// [`SMOOTH_GROUND_RMS_M`] (no bumps that steepen a short stretch), a cut cell counts
