@@ -126,6 +126,45 @@ fn a_trench_wall_seen_broadside_by_a_rolled_offset_camera_neither_stops_nor_tilt
     );
 }
 
+#[test]
+fn a_trench_wall_in_a_cell_the_view_ends_in_makes_no_step_but_a_block_there_does() {
+    // An 8.4° descent under the right track, capped 21 cm down past the corridor, seen
+    // by a Kinect v2 0.57 m high pitched 43° (`sweep -- families 150 5201 random` #47,
+    // noisy): the view ends 2.7 m out, and in the outermost strip the cells it ends in
+    // hold the trench's outer wall as well as its floor. The wall's top, noise-lifted to
+    // 1.5 cm under the belly's level, read as a lower bound on the strip's ground
+    // there: a 11 cm rise out of the floor, a step. The wall runs along the strip; the
+    // strip's ground in that cell is the floor beside it.
+    let mut c = mounted([0.2374, 0.0231, 0.5687], [0.2513, 42.7841, 3.4992]);
+    (c.camera.width, c.camera.height) = (512, 424);
+    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
+    c.camera.min_range_m = 0.3127;
+    let (toe, g) = (1.7745, -8.4315);
+    let trench = || vec![Element::ramp(toe, -0.45, g, 0.0, RIGHT_TRACK).capped(Some(0.2094))];
+    assert_go(&analyse(trench(), &c), 10, toe, g, None);
+    let v = analyse_noisy(trench(), &c, 5_201_047);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    assert_eq!(v.feature.expect("a go has a feature").workcase, 10);
+    // A block 14 cm high on the floor against the wall, across the three outer strips
+    // where the view ends: its front is across the strips, its top a rise the bound
+    // proves.
+    let block = Element::Block {
+        x_m: 2.7,
+        y_m: -0.625,
+        length_m: 0.2,
+        width_m: 0.15,
+        height_m: 0.14,
+    };
+    let mut scene = trench();
+    scene.push(block);
+    for v in [
+        analyse(scene.clone(), &c),
+        analyse_noisy(scene, &c, 5_201_047),
+    ] {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
 /// A 320×240 camera 0.9 m high pitched 20°, offset and yawed 9°: past 2.8 m its rows
 /// fall about one per cell on ground falling away at 12°.
 fn coarse_rig() -> Config {

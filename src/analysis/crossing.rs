@@ -25,7 +25,9 @@ use crate::verdict::{Hazard, HazardKind, Verdict};
 /// face the cells have one surface, the other side's.
 ///
 /// A cell the image's top edge cuts through holds only the lower part of what stands
-/// there: its top is a lower bound on its height. So a rise *into* such a cell, or a
+/// there: its top is a lower bound on its height (beside a face along the strip, a
+/// trench's wall on the corridor's edge, the top is the face's: the bound is then
+/// the ground's own surface, [`ground_beside_face`]). So a rise *into* such a cell, or a
 /// fall *out of* it, is measured (the bound proves it), while a fall into it or a
 /// rise out of it proves nothing and is not a hazard: the surface simply left the
 /// view (a ramp rising out of the image, seen past its horizon only by its side face).
@@ -57,7 +59,10 @@ pub fn steps_and_slopes(
                 let past = f.past[c];
                 let carried = continued(last, cell.x, tan_max);
                 let z = if past {
-                    cell.top.max(cell.z)
+                    // A lower bound; but beside a face along the strip (a trench's
+                    // wall), the top is the face's, and the bound the ground's.
+                    ground_beside_face(cell, f.spec.y_centre(iy), vs)
+                        .unwrap_or(cell.top.max(cell.z))
                 } else if let Some(z) = ground_beside_face(cell, f.spec.y_centre(iy), vs) {
                     z
                 } else if let Some(z) = unresolved_ground(
