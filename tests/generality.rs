@@ -133,7 +133,7 @@ fn a_trench_wall_in_a_cell_the_view_ends_in_makes_no_step_but_a_block_there_does
     // noisy): the view ends 2.7 m out, and in the outermost strip the cells it ends in
     // hold the trench's outer wall as well as its floor. The wall's top, noise-lifted to
     // 1.5 cm under the belly's level, read as a lower bound on the strip's ground
-    // there: a 11 cm rise out of the floor, a step. The wall runs along the strip; the
+    // there: an 11 cm rise out of the floor, a step. The wall runs along the strip; the
     // strip's ground in that cell is the floor beside it.
     let mut c = mounted([0.2374, 0.0231, 0.5687], [0.2513, 42.7841, 3.4992]);
     (c.camera.width, c.camera.height) = (512, 424);

@@ -58,12 +58,13 @@ pub fn steps_and_slopes(
                 let cell = &f.cells[c];
                 let past = f.past[c];
                 let carried = continued(last, cell.x, tan_max);
+                // Beside a face along the strip (a trench's wall), the cell's ground.
+                let beside = ground_beside_face(cell, f.spec.y_centre(iy), vs);
                 let z = if past {
-                    // A lower bound; but beside a face along the strip (a trench's
-                    // wall), the top is the face's, and the bound the ground's.
-                    ground_beside_face(cell, f.spec.y_centre(iy), vs)
-                        .unwrap_or(cell.top.max(cell.z))
-                } else if let Some(z) = ground_beside_face(cell, f.spec.y_centre(iy), vs) {
+                    // A lower bound; beside such a face the top is the face's, and
+                    // the bound the ground's.
+                    beside.unwrap_or(cell.top.max(cell.z))
+                } else if let Some(z) = beside {
                     z
                 } else if let Some(z) = unresolved_ground(
                     cell,
