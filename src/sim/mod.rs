@@ -45,7 +45,11 @@ pub struct Pose {
 impl Pose {
     /// The terrain coordinates of the rover-frame point (x, y).
     pub fn to_terrain(&self, x: f64, y: f64) -> (f64, f64) {
-        let (s, c) = self.heading.sin_cos();
+        self.to_terrain_by(self.heading.sin_cos(), x, y)
+    }
+
+    /// [`Pose::to_terrain`] with the heading's (sin, cos) given, for many points.
+    fn to_terrain_by(self, (s, c): (f64, f64), x: f64, y: f64) -> (f64, f64) {
         (self.x + c * x - s * y, self.y + s * x + c * y)
     }
 }
@@ -83,8 +87,9 @@ fn cast(terrain: &HeightField, pose: Pose, projector: &Projector, u: usize, v: u
     // A margin, so that a surface lying exactly at a bound is inside the interval.
     let (lo, hi) = terrain.bounds();
     let (lo, hi) = (lo - 0.01, hi + 0.01);
+    let heading = pose.heading.sin_cos();
     let height = |x: f64, y: f64| {
-        let (tx, ty) = pose.to_terrain(x, y);
+        let (tx, ty) = pose.to_terrain_by(heading, x, y);
         terrain.height(tx, ty)
     };
     let above = |t: f64| o.z + t * d.z - height(o.x + t * d.x, o.y + t * d.y);

@@ -1,3 +1,5 @@
+use std::sync::OnceLock;
+
 use serde::{Deserialize, Serialize};
 
 /// Which part of the width an element covers.
@@ -249,19 +251,8 @@ impl Element {
                 extent,
                 cap_m,
             } => {
-                if !extent.covers(y) {
-                    return 0.0;
-                }
-                let a = alpha_deg.to_radians();
-                let across = (x - toe_x_m) * a.cos() + (y - ref_y_m) * a.sin();
-                if across <= 0.0 {
-                    return 0.0;
-                }
-                let h = across * gradient_deg.to_radians().tan();
-                match cap_m {
-                    Some(cap) => h.clamp(-cap, cap),
-                    None => h,
-                }
+                let trig = RampTrig::new(alpha_deg, gradient_deg);
+                trig.height(x, y, toe_x_m, ref_y_m, extent, cap_m)
             }
             Element::Step {
                 x_m,
@@ -363,6 +354,63 @@ impl Element {
     }
 }
 
+/// A ramp's trigonometry, which a [`HeightField`] computes once and not per query.
+#[derive(Debug, Clone, Copy)]
+struct RampTrig {
+    /// cos and sin of the toe line's angle.
+    cos: f64,
+    sin: f64,
+    /// Tangent of the gradient.
+    tan: f64,
+}
+
+impl RampTrig {
+    fn new(alpha_deg: f64, gradient_deg: f64) -> Self {
+        let a = alpha_deg.to_radians();
+        RampTrig {
+            cos: a.cos(),
+            sin: a.sin(),
+            tan: gradient_deg.to_radians().tan(),
+        }
+    }
+
+    /// Height of the ramp with toe line at `toe_x` (measured at `ref_y`) over
+    /// `extent`, capped at `cap`, at (x, y), metres.
+    fn height(
+        self,
+        x: f64,
+        y: f64,
+        toe_x: f64,
+        ref_y: f64,
+        extent: Extent,
+        cap: Option<f64>,
+    ) -> f64 {
+        if !extent.covers(y) {
+            return 0.0;
+        }
+        let across = (x - toe_x) * self.cos + (y - ref_y) * self.sin;
+        if across <= 0.0 {
+            return 0.0;
+        }
+        let h = across * self.tan;
+        match cap {
+            Some(cap) => h.clamp(-cap, cap),
+            None => h,
+        }
+    }
+}
+
+/// What a [`HeightField`] prepares for one element.
+#[derive(Debug, Clone)]
+enum Prepared {
+    /// A rough field's table.
+    Rough(Box<RoughTable>),
+    /// A ramp's trigonometry.
+    Ramp(RampTrig),
+    /// Nothing: the element is evaluated as it is.
+    Plain,
+}
+
 /// A height field: flat ground at z = 0 plus elements.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -373,55 +421,82 @@ pub struct Terrain {
 
 /// A terrain prepared for many height queries: each rough field's waves drawn once
 /// and tabulated on a [`ROUGH_GRID_M`] grid over the region a camera on the rover
-/// sees ([`ROUGH_TABLE_X`], [`ROUGH_TABLE_Y`]), interpolated bilinearly there (an
-/// error far below a millimetre for correlation lengths of centimetres and more) and
-/// summed directly elsewhere.
+/// can see ([`ROUGH_TABLE_X`], [`ROUGH_TABLE_Y`]), a tile at a time as queries need
+/// it, interpolated bilinearly there (an error far below a millimetre for
+/// correlation lengths of centimetres and more) and summed directly elsewhere; each ramp's trigonometry computed once (the same
+/// values as per query, so the same heights to the bit).
 #[derive(Debug, Clone)]
 pub struct HeightField<'a> {
     terrain: &'a Terrain,
-    waves: Vec<Option<RoughTable>>,
+    prepared: Vec<Prepared>,
 }
 
 /// Spacing of a rough field's table, metres.
 pub const ROUGH_GRID_M: f64 = 0.01;
-/// Forward extent of a rough field's table, metres.
-pub const ROUGH_TABLE_X: (f64, f64) = (-0.5, 6.0);
+/// Forward extent of a rough field's table, metres: from behind the rover to past
+/// the renderer's farthest ray ([`super::FAR_M`]).
+pub const ROUGH_TABLE_X: (f64, f64) = (-0.5, 12.0);
 /// Lateral extent of a rough field's table, metres.
-pub const ROUGH_TABLE_Y: (f64, f64) = (-3.0, 3.0);
+pub const ROUGH_TABLE_Y: (f64, f64) = (-12.0, 12.0);
+/// Where the table's lattice starts: (x, y) of grid point (0, 0), metres. Points at
+/// negative indices down to [`ROUGH_TABLE_X`]`.0`, [`ROUGH_TABLE_Y`]`.0` are in the
+/// table too; the origin fixes where the lattice lies.
+const ROUGH_ORIGIN: (f64, f64) = (-0.5, -3.0);
+/// Side of a tile of a rough field's table, grid steps. The table is computed a
+/// tile at a time, when a query first needs it: a frame touches a small part of it.
+const ROUGH_TILE: usize = 64;
 
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 struct RoughTable {
     amplitude: f64,
     scale: f64,
     waves: [(f64, f64, f64); ROUGH_WAVES],
-    nx: usize,
-    ny: usize,
-    table: Vec<f32>,
+    /// Lattice index of the table's first grid point, (i, j).
+    first: (i64, i64),
+    /// Tiles along x and along y.
+    tiles: (usize, usize),
+    /// The tiles, x-major, each [`ROUGH_TILE`]² heights (x-major), filled on first
+    /// use.
+    table: Vec<OnceLock<Box<[f32]>>>,
+}
+
+impl Clone for RoughTable {
+    fn clone(&self) -> Self {
+        RoughTable::new_like(self)
+    }
 }
 
 impl RoughTable {
     fn new(amplitude: f64, correlation: f64, seed: u64) -> Self {
         // σ = amplitude / 2: each wave contributes σ·√(2/N)·cos(…).
         let scale = 0.5 * amplitude * (2.0 / ROUGH_WAVES as f64).sqrt();
-        let waves = rough_waves(correlation, seed);
-        let nx = ((ROUGH_TABLE_X.1 - ROUGH_TABLE_X.0) / ROUGH_GRID_M).round() as usize + 1;
-        let ny = ((ROUGH_TABLE_Y.1 - ROUGH_TABLE_Y.0) / ROUGH_GRID_M).round() as usize + 1;
-        let mut t = RoughTable {
+        let index = |v: f64, origin: f64| ((v - origin) / ROUGH_GRID_M).floor() as i64;
+        let first = (
+            index(ROUGH_TABLE_X.0, ROUGH_ORIGIN.0),
+            index(ROUGH_TABLE_Y.0, ROUGH_ORIGIN.1),
+        );
+        let last = (
+            index(ROUGH_TABLE_X.1, ROUGH_ORIGIN.0),
+            index(ROUGH_TABLE_Y.1, ROUGH_ORIGIN.1),
+        );
+        let count = |a: i64, b: i64| ((b - a + 1) as usize).div_ceil(ROUGH_TILE);
+        let tiles = (count(first.0, last.0), count(first.1, last.1));
+        RoughTable {
             amplitude,
             scale,
-            waves,
-            nx,
-            ny,
-            table: Vec::new(),
-        };
-        t.table = (0..nx * ny)
-            .map(|k| {
-                let x = ROUGH_TABLE_X.0 + (k / ny) as f64 * ROUGH_GRID_M;
-                let y = ROUGH_TABLE_Y.0 + (k % ny) as f64 * ROUGH_GRID_M;
-                t.direct(x, y) as f32
-            })
-            .collect();
-        t
+            waves: rough_waves(correlation, seed),
+            first,
+            tiles,
+            table: (0..tiles.0 * tiles.1).map(|_| OnceLock::new()).collect(),
+        }
+    }
+
+    /// A table of the same field, its tiles not yet computed.
+    fn new_like(&self) -> Self {
+        RoughTable {
+            table: (0..self.table.len()).map(|_| OnceLock::new()).collect(),
+            ..*self
+        }
     }
 
     /// The field summed directly, unclipped.
@@ -434,20 +509,68 @@ impl RoughTable {
         self.scale * s
     }
 
+    /// The tabulated value at lattice point (i, j), if the table holds it.
+    fn at(&self, i: i64, j: i64) -> Option<f64> {
+        let (ti, tj) = (i - self.first.0, j - self.first.1);
+        if ti < 0 || tj < 0 {
+            return None;
+        }
+        let (ti, tj) = (ti as usize, tj as usize);
+        let (tx, ty) = (ti / ROUGH_TILE, tj / ROUGH_TILE);
+        if tx >= self.tiles.0 || ty >= self.tiles.1 {
+            return None;
+        }
+        let tile = self.table[tx * self.tiles.1 + ty].get_or_init(|| {
+            let (i0, j0) = (
+                self.first.0 + (tx * ROUGH_TILE) as i64,
+                self.first.1 + (ty * ROUGH_TILE) as i64,
+            );
+            (0..ROUGH_TILE * ROUGH_TILE)
+                .map(|k| {
+                    let x = ROUGH_ORIGIN.0 + (i0 + (k / ROUGH_TILE) as i64) as f64 * ROUGH_GRID_M;
+                    let y = ROUGH_ORIGIN.1 + (j0 + (k % ROUGH_TILE) as i64) as f64 * ROUGH_GRID_M;
+                    self.direct(x, y) as f32
+                })
+                .collect()
+        });
+        Some(f64::from(
+            tile[(ti % ROUGH_TILE) * ROUGH_TILE + tj % ROUGH_TILE],
+        ))
+    }
+
+    /// The field at (x, y), metres: interpolated bilinearly in the table, summed
+    /// directly outside it; clipped to the amplitude.
     fn height(&self, x: f64, y: f64) -> f64 {
-        let fx = (x - ROUGH_TABLE_X.0) / ROUGH_GRID_M;
-        let fy = (y - ROUGH_TABLE_Y.0) / ROUGH_GRID_M;
-        let h = if fx >= 0.0 && fy >= 0.0 && fx < (self.nx - 1) as f64 && fy < (self.ny - 1) as f64
-        {
-            let (i, j) = (fx as usize, fy as usize);
-            let (a, b) = (fx - i as f64, fy - j as f64);
-            let at = |i: usize, j: usize| f64::from(self.table[i * self.ny + j]);
-            (1.0 - a) * ((1.0 - b) * at(i, j) + b * at(i, j + 1))
-                + a * ((1.0 - b) * at(i + 1, j) + b * at(i + 1, j + 1))
-        } else {
-            self.direct(x, y)
+        let fx = (x - ROUGH_ORIGIN.0) / ROUGH_GRID_M;
+        let fy = (y - ROUGH_ORIGIN.1) / ROUGH_GRID_M;
+        let (i, j) = (floor(fx), floor(fy));
+        let (a, b) = (fx - i as f64, fy - j as f64);
+        let corners = (|| {
+            Some([
+                self.at(i, j)?,
+                self.at(i, j + 1)?,
+                self.at(i + 1, j)?,
+                self.at(i + 1, j + 1)?,
+            ])
+        })();
+        let h = match corners {
+            Some([c00, c01, c10, c11]) => {
+                (1.0 - a) * ((1.0 - b) * c00 + b * c01) + a * ((1.0 - b) * c10 + b * c11)
+            }
+            None => self.direct(x, y),
         };
         h.clamp(-self.amplitude, self.amplitude)
+    }
+}
+
+/// `v.floor()` as an integer, without a call to libm's `floor` (which the baseline
+/// x86-64 target makes for every `f64::floor`, a tenth of a frame's rendering).
+fn floor(v: f64) -> i64 {
+    let i = v as i64;
+    if (i as f64) > v {
+        i - 1
+    } else {
+        i
     }
 }
 
@@ -460,10 +583,20 @@ impl HeightField<'_> {
     /// Ground height at (x, y), metres, rover frame.
     pub fn height(&self, x: f64, y: f64) -> f64 {
         let mut h = 0.0;
-        for (e, w) in self.terrain.elements.iter().zip(&self.waves) {
-            h += match w {
-                Some(table) => table.height(x, y),
-                None => e.height(x, y),
+        for (e, p) in self.terrain.elements.iter().zip(&self.prepared) {
+            h += match (p, e) {
+                (Prepared::Rough(table), _) => table.height(x, y),
+                (
+                    Prepared::Ramp(trig),
+                    &Element::Ramp {
+                        toe_x_m,
+                        ref_y_m,
+                        extent,
+                        cap_m,
+                        ..
+                    },
+                ) => trig.height(x, y, toe_x_m, ref_y_m, extent, cap_m),
+                _ => e.height(x, y),
             };
         }
         h
@@ -483,7 +616,7 @@ impl Terrain {
 
     /// This terrain prepared for many height queries.
     pub fn field(&self) -> HeightField<'_> {
-        let waves = self
+        let prepared = self
             .elements
             .iter()
             .map(|e| match *e {
@@ -491,13 +624,18 @@ impl Terrain {
                     amplitude_m,
                     correlation_m,
                     seed,
-                } => Some(RoughTable::new(amplitude_m, correlation_m, seed)),
-                _ => None,
+                } => Prepared::Rough(Box::new(RoughTable::new(amplitude_m, correlation_m, seed))),
+                Element::Ramp {
+                    gradient_deg,
+                    alpha_deg,
+                    ..
+                } => Prepared::Ramp(RampTrig::new(alpha_deg, gradient_deg)),
+                _ => Prepared::Plain,
             })
             .collect();
         HeightField {
             terrain: self,
-            waves,
+            prepared,
         }
     }
 
@@ -513,5 +651,66 @@ impl Terrain {
             let (a, b) = e.bounds();
             (lo + a, hi + b)
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What the table must give at (x, y): the direct sums at the four lattice
+    /// points around it, as stored (f32), blended bilinearly; clipped.
+    fn by_hand(t: &RoughTable, x: f64, y: f64) -> f64 {
+        let (fx, fy) = (
+            (x - ROUGH_ORIGIN.0) / ROUGH_GRID_M,
+            (y - ROUGH_ORIGIN.1) / ROUGH_GRID_M,
+        );
+        let (i, j) = (fx.floor(), fy.floor());
+        let (a, b) = (fx - i, fy - j);
+        let at = |di: f64, dj: f64| {
+            let px = ROUGH_ORIGIN.0 + ((i + di) as i64) as f64 * ROUGH_GRID_M;
+            let py = ROUGH_ORIGIN.1 + ((j + dj) as i64) as f64 * ROUGH_GRID_M;
+            f64::from(t.direct(px, py) as f32)
+        };
+        let h = (1.0 - a) * ((1.0 - b) * at(0.0, 0.0) + b * at(0.0, 1.0))
+            + a * ((1.0 - b) * at(1.0, 0.0) + b * at(1.0, 1.0));
+        h.clamp(-t.amplitude, t.amplitude)
+    }
+
+    #[test]
+    fn the_tiled_table_gives_the_lattice_blend_everywhere_and_the_sum_outside() {
+        let t = RoughTable::new(0.025, 0.1, 11);
+        let tile = ROUGH_TILE as f64 * ROUGH_GRID_M;
+        let mut points = vec![
+            // Both sides of tile boundaries, and the lattice's origin.
+            (ROUGH_ORIGIN.0 + tile - 0.003, ROUGH_ORIGIN.1 + tile - 0.004),
+            (ROUGH_ORIGIN.0 + tile + 0.003, ROUGH_ORIGIN.1 - tile + 0.004),
+            (ROUGH_ORIGIN.0, ROUGH_ORIGIN.1),
+            // Far ahead and far to the side, where rays end.
+            (9.87, -7.31),
+            (11.95, 11.9),
+            (-0.45, -11.95),
+        ];
+        // A spread over the table, not on the lattice.
+        for k in 0..400 {
+            let k = f64::from(k);
+            points.push(((k * 0.3137) % 12.4 - 0.45, (k * 0.7311) % 23.9 - 11.95));
+        }
+        for &(x, y) in &points {
+            assert_eq!(t.height(x, y), by_hand(&t, x, y), "at ({x}, {y})");
+            // The table's own error against the sum it tabulates.
+            let direct = t.direct(x, y).clamp(-0.025, 0.025);
+            assert!((t.height(x, y) - direct).abs() < 2e-4, "at ({x}, {y})");
+        }
+        // Outside the table: the sum itself.
+        for (x, y) in [(-0.6, 0.0), (12.5, 1.0), (3.0, 12.5), (3.0, -12.5)] {
+            assert_eq!(t.height(x, y), t.direct(x, y).clamp(-0.025, 0.025));
+        }
+        // A clone starts empty and gives the same heights.
+        let c = t.clone();
+        assert!(c.table.iter().all(|tile| tile.get().is_none()));
+        for &(x, y) in &points {
+            assert_eq!(c.height(x, y), t.height(x, y));
+        }
     }
 }
