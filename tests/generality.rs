@@ -10,7 +10,7 @@ use rover_terrain::{Config, Decision, HazardKind, Side, Verdict};
 #[path = "common/scenes.rs"]
 mod scenes;
 
-use scenes::{analyse, analyse_noisy, LEFT_TRACK, RIGHT_TRACK};
+use scenes::{analyse, analyse_noisy, analyse_views, LEFT_TRACK, RIGHT_TRACK};
 
 fn assert_go(v: &Verdict, wc: u8, d: f64, g: f64, alpha: Option<f64>) {
     assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
@@ -110,8 +110,8 @@ fn a_trench_wall_seen_broadside_by_a_rolled_offset_camera_neither_stops_nor_tilt
     c.camera.min_range_m = 0.41;
     let (toe, g) = (1.5687, -14.654);
     let trench = || vec![Element::ramp(toe, 0.45, g, 0.0, LEFT_TRACK).capped(Some(0.2357))];
-    assert_go(&analyse(trench(), &c), 9, toe, g, None);
-    let v = analyse_noisy(trench(), &c, 7014);
+    let [clean, v] = analyse_views(trench(), &c, [None, Some(7014)]);
+    assert_go(&clean, 9, toe, g, None);
     assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
     let f = v.feature.expect("a go has a feature");
     assert_eq!(f.workcase, 9);
@@ -141,8 +141,8 @@ fn a_trench_wall_in_a_cell_the_view_ends_in_makes_no_step_but_a_block_there_does
     c.camera.min_range_m = 0.3127;
     let (toe, g) = (1.7745, -8.4315);
     let trench = || vec![Element::ramp(toe, -0.45, g, 0.0, RIGHT_TRACK).capped(Some(0.2094))];
-    assert_go(&analyse(trench(), &c), 10, toe, g, None);
-    let v = analyse_noisy(trench(), &c, 5_201_047);
+    let [clean, v] = analyse_views(trench(), &c, [None, Some(5_201_047)]);
+    assert_go(&clean, 10, toe, g, None);
     assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
     assert_eq!(v.feature.expect("a go has a feature").workcase, 10);
     // A block 14 cm high on the floor against the wall, across the three outer strips
@@ -157,10 +157,7 @@ fn a_trench_wall_in_a_cell_the_view_ends_in_makes_no_step_but_a_block_there_does
     };
     let mut scene = trench();
     scene.push(block);
-    for v in [
-        analyse(scene.clone(), &c),
-        analyse_noisy(scene, &c, 5_201_047),
-    ] {
+    for v in analyse_views(scene, &c, [None, Some(5_201_047)]) {
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
     }
 }
@@ -287,7 +284,7 @@ fn a_boulder_whose_far_side_is_hidden_stops_and_a_ramp_out_of_view_still_goes() 
         ),
     ] {
         let scene = vec![ground, rock.clone()];
-        for v in [analyse(scene.clone(), c), analyse_noisy(scene, c, 11)] {
+        for v in analyse_views(scene, c, [None, Some(11)]) {
             assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
             let step = v
                 .hazards
@@ -378,7 +375,7 @@ fn a_step_below_the_image_is_never_go_but_a_ramp_toe_there_is_measured() {
     };
     for height_m in [0.25, -0.25] {
         let scene = vec![step(1.05, height_m, Extent::Left)];
-        for v in [analyse(scene.clone(), &c), analyse_noisy(scene, &c, 54)] {
+        for v in analyse_views(scene, &c, [None, Some(54)]) {
             assert_ne!(v.decision, Decision::Go, "{height_m} m");
             assert!(
                 hazard(&v, HazardKind::Unknown, Side::Left, 1.05),
@@ -439,10 +436,7 @@ fn a_boulder_whose_foot_is_below_the_image_is_never_go() {
         radius_m: 0.188,
         height_m,
     };
-    for v in [
-        analyse(vec![rock(0.151)], &c),
-        analyse_noisy(vec![rock(0.151)], &c, 35),
-    ] {
+    for v in analyse_views(vec![rock(0.151)], &c, [None, Some(35)]) {
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
         assert!(
             v.hazards.iter().any(|h| h.side == Side::Left),
@@ -637,12 +631,9 @@ fn impassable_edges_the_hazard_sweep_does_not_draw_are_never_go_on_random_rigs()
         let rig = families::Rig::random(&mut rng);
         let at = families::judged_span(&rig.config);
         let (terrain, _) = random::edge_scene_within(&mut rng, i, at);
-        for noise in [None, Some(1200 + i as u64)] {
-            let e = terrain.elements.clone();
-            let v = match noise {
-                None => analyse(e, &rig.config),
-                Some(seed) => analyse_noisy(e, &rig.config, seed),
-            };
+        let noises = [None, Some(1200 + i as u64)];
+        let views = analyse_views(terrain.elements.clone(), &rig.config, noises);
+        for (noise, v) in noises.into_iter().zip(views) {
             if v.decision == Decision::Go {
                 go.push(format!("#{i} noise {noise:?}: {:?}", terrain.elements));
             }
@@ -834,10 +825,7 @@ fn a_wall_or_a_steep_ramp_the_view_ends_in_is_never_go() {
         (block, &low, Side::Centre),
         (steep, &rolled, Side::Right),
     ] {
-        for v in [
-            analyse(vec![element.clone()], c),
-            analyse_noisy(vec![element.clone()], c, 81),
-        ] {
+        for v in analyse_views(vec![element.clone()], c, [None, Some(81)]) {
             assert_ne!(v.decision, Decision::Go, "{element:?}: {:?}", v.feature);
             assert!(
                 v.hazards.iter().any(|h| h.side == side),
@@ -903,10 +891,7 @@ fn a_step_a_cell_or_two_past_the_images_bottom_edge_is_never_go() {
         extent: Extent::Right,
     };
     for (x, h) in [(1.31, 0.201), (1.31, 0.12), (1.36, 0.12)] {
-        for v in [
-            analyse(vec![step(x, h)], &c),
-            analyse_noisy(vec![step(x, h)], &c, 18),
-        ] {
+        for v in analyse_views(vec![step(x, h)], &c, [None, Some(18)]) {
             assert_eq!(v.decision, Decision::Stop, "{x} {h}: {:?}", v.feature);
             assert!(
                 v.hazards
@@ -929,10 +914,7 @@ fn a_step_a_cell_or_two_past_the_images_bottom_edge_is_never_go() {
         (1.1, -0.115),
         (1.2, -0.118),
     ] {
-        for v in [
-            analyse(vec![step(x, h)], &c),
-            analyse_noisy(vec![step(x, h)], &c, 18),
-        ] {
+        for v in analyse_views(vec![step(x, h)], &c, [None, Some(18)]) {
             assert_ne!(v.decision, Decision::Go, "{x} {h}: {:?}", v.feature);
             assert!(
                 v.hazards.iter().any(|h| h.side == Side::Right),
@@ -976,8 +958,8 @@ fn a_one_track_ramp_rising_out_of_view_lifts_no_belly_cell_beside_it() {
     };
     let (toe, g, alpha) = (0.8699, 22.648, 2.2935);
     let ramp = || Element::ramp(toe, 0.45, g, alpha, LEFT_TRACK);
-    assert_go(&analyse(vec![ramp()], &c), 3, toe, g, None);
-    let v = analyse_noisy(vec![ramp()], &c, 22);
+    let [clean, v] = analyse_views(vec![ramp()], &c, [None, Some(22)]);
+    assert_go(&clean, 3, toe, g, None);
     assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
     assert_eq!(v.feature.map(|f| f.workcase), Some(3));
     // On that rig a ramp too steep to climb still stops, and so does a block under
@@ -1033,10 +1015,7 @@ fn a_step_down_whose_shadow_is_one_cell_long_is_never_go() {
         (&d435, 1.2814, -0.12, Extent::Left, Side::Left),
         (&d435, 1.30, -0.25, Extent::Full, Side::Left),
     ] {
-        for v in [
-            analyse(vec![step(x, h, extent)], c),
-            analyse_noisy(vec![step(x, h, extent)], c, 13),
-        ] {
+        for v in analyse_views(vec![step(x, h, extent)], c, [None, Some(13)]) {
             assert_eq!(v.decision, Decision::Stop, "{x} {h}: {:?}", v.feature);
             assert!(
                 v.hazards.iter().any(|z| z.side == side
@@ -1078,11 +1057,7 @@ fn a_steep_ramp_seen_rising_a_few_centimetres_before_the_view_ends_is_never_go()
     let mut c = mounted([0.138, 0.0407, 0.6015], [-1.306, 38.956, -6.578]);
     c.camera.min_range_m = 0.4135;
     let steep = Element::ramp(1.8238, 0.0, 36.26, 0.0, Extent::Left);
-    for v in [
-        analyse(vec![steep.clone()], &c),
-        analyse_noisy(vec![steep.clone()], &c, 5218),
-        analyse_noisy(vec![steep.clone()], &c, 7),
-    ] {
+    for v in analyse_views(vec![steep.clone()], &c, [None, Some(5218), Some(7)]) {
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
         assert!(
             v.hazards
@@ -1097,10 +1072,7 @@ fn a_steep_ramp_seen_rising_a_few_centimetres_before_the_view_ends_is_never_go()
     for gradient in [15.0, 22.0] {
         for extent in [Extent::Left, Extent::Full] {
             let ramp = Element::ramp(1.8238, 0.0, gradient, 0.0, extent);
-            for v in [
-                analyse(vec![ramp.clone()], &c),
-                analyse_noisy(vec![ramp.clone()], &c, 5218),
-            ] {
+            for v in analyse_views(vec![ramp.clone()], &c, [None, Some(5218)]) {
                 assert_eq!(v.decision, Decision::Go, "{ramp:?}: {:?}", v.hazards);
             }
         }
@@ -1153,11 +1125,7 @@ fn a_step_the_view_ends_in_whose_face_noise_spreads_is_never_go() {
 /// Asserts that `element` on rig `c` is not go, clean and with noise from each of
 /// `seeds`, and that a hazard on `side` says why.
 fn assert_never_go(scene: &[Element], c: &Config, seeds: [u64; 2], side: Side) {
-    for v in [
-        analyse(scene.to_vec(), c),
-        analyse_noisy(scene.to_vec(), c, seeds[0]),
-        analyse_noisy(scene.to_vec(), c, seeds[1]),
-    ] {
+    for v in analyse_views(scene.to_vec(), c, [None, Some(seeds[0]), Some(seeds[1])]) {
         assert_ne!(v.decision, Decision::Go, "{scene:?}: {:?}", v.feature);
         assert!(
             v.hazards.iter().any(|h| h.side == side),
@@ -1186,10 +1154,7 @@ impl ViewEndControls {
         for gradient in [15.0, self.steepest_deg] {
             for extent in [self.track, Extent::Full] {
                 let ramp = Element::ramp(self.ramp_toe_m, 0.0, gradient, 0.0, extent);
-                for v in [
-                    analyse(vec![ramp.clone()], c),
-                    analyse_noisy(vec![ramp.clone()], c, seed),
-                ] {
+                for v in analyse_views(vec![ramp.clone()], c, [None, Some(seed)]) {
                     assert_eq!(v.decision, Decision::Go, "{ramp:?}: {:?}", v.hazards);
                 }
             }
@@ -1266,11 +1231,7 @@ fn a_one_track_ramps_side_face_split_between_belly_and_track_cells_is_not_under_
         to_m: -0.2,
     };
     let ramp = Element::ramp(0.8989, -0.45, 22.31, 16.27, band);
-    for v in [
-        analyse(vec![ramp.clone()], &c),
-        analyse_noisy(vec![ramp.clone()], &c, 114022),
-        analyse_noisy(vec![ramp.clone()], &c, 3),
-    ] {
+    for v in analyse_views(vec![ramp.clone()], &c, [None, Some(114022), Some(3)]) {
         assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
         let f = v.feature.expect("a go has its feature");
         assert_eq!(f.workcase, 6, "{f:?}");
@@ -1286,10 +1247,7 @@ fn a_one_track_ramps_side_face_split_between_belly_and_track_cells_is_not_under_
         width_m: 0.2,
         height_m: 0.75,
     };
-    for v in [
-        analyse(vec![ramp.clone(), block.clone()], &c),
-        analyse_noisy(vec![ramp, block], &c, 114022),
-    ] {
+    for v in analyse_views(vec![ramp, block], &c, [None, Some(114022)]) {
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
         assert!(
             v.hazards.iter().any(|h| h.side == Side::Centre),
@@ -1338,10 +1296,7 @@ fn a_boulder_whose_shadow_hides_the_ground_beside_it_is_never_go() {
         rock(1.861, 0.399, 0.198, 0.09),
         Element::ramp(1.75, 0.45, 18.0, 0.0, LEFT_TRACK),
     ] {
-        for v in [
-            analyse(field(third.clone()), &c),
-            analyse_noisy(field(third.clone()), &c, 5),
-        ] {
+        for v in analyse_views(field(third.clone()), &c, [None, Some(5)]) {
             assert_eq!(v.decision, Decision::Go, "{third:?}: {:?}", v.hazards);
         }
     }
@@ -1453,7 +1408,7 @@ fn a_descent_whose_toe_is_below_the_image_is_go_and_a_drop_there_is_not() {
     for (gradient, alpha) in [(-15.6, 50.2), (-15.0, 0.0), (-18.0, -35.0), (-10.0, 30.0)] {
         for toe in [near - 0.3, near - 0.1] {
             let scene = vec![Element::ramp(toe, 0.0, gradient, alpha, Extent::Full)];
-            for v in [analyse(scene.clone(), &c), analyse_noisy(scene, &c, 181)] {
+            for v in analyse_views(scene, &c, [None, Some(181)]) {
                 assert_eq!(
                     v.decision,
                     Decision::Go,
@@ -1466,7 +1421,7 @@ fn a_descent_whose_toe_is_below_the_image_is_go_and_a_drop_there_is_not() {
     for depth_m in [0.15, 0.3] {
         for x_m in [near - 0.3, near - 0.1] {
             let scene = vec![Element::DropOff { x_m, depth_m }];
-            for v in [analyse(scene.clone(), &c), analyse_noisy(scene, &c, 182)] {
+            for v in analyse_views(scene, &c, [None, Some(182)]) {
                 assert_ne!(v.decision, Decision::Go, "{depth_m} m down at {x_m} m");
             }
         }
@@ -1501,7 +1456,7 @@ fn a_descending_tracks_wall_top_in_its_edge_strip_makes_no_step_but_a_block_ther
             height_m,
         };
         let scene = vec![slot.clone(), block];
-        for v in [analyse(scene.clone(), &c), analyse_noisy(scene, &c, 4152)] {
+        for v in analyse_views(scene, &c, [None, Some(4152)]) {
             assert_ne!(v.decision, Decision::Go, "{height_m} m at {x_m} m");
         }
     }
@@ -1555,21 +1510,14 @@ fn a_rough_ramp_rising_out_of_view_is_judged_by_its_line_and_a_steep_one_still_s
             Element::ramp(1.4567, 0.0, gradient_deg, 0.0, Extent::Full).capped(cap_m),
         ]
     };
-    for v in [
-        analyse(ramp(24.53, None), &c),
-        analyse_noisy(ramp(24.53, None), &c, 197_038),
-        analyse_noisy(ramp(24.53, None), &c, 5),
-    ] {
+    for v in analyse_views(ramp(24.53, None), &c, [None, Some(197_038), Some(5)]) {
         assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
         assert_eq!(v.feature.map(|f| f.workcase), Some(2));
     }
     // Over the limit on the same ground, and a 45° bank 15 cm high with the flat
     // above it (not one line after the toe): never go.
     for scene in [ramp(33.0, None), ramp(36.0, None), ramp(45.0, Some(0.15))] {
-        for v in [
-            analyse(scene.clone(), &c),
-            analyse_noisy(scene.clone(), &c, 5),
-        ] {
+        for v in analyse_views(scene.clone(), &c, [None, Some(5)]) {
             assert_ne!(v.decision, Decision::Go, "{scene:?}: {:?}", v.feature);
         }
     }

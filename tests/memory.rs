@@ -6,6 +6,8 @@ use rover_terrain::memory::odometry::Untrusted;
 use rover_terrain::memory::{MemoryState, Motion};
 use rover_terrain::sim::{self, Element, Extent, Pose, Terrain};
 use rover_terrain::{Config, HazardKind, Pipeline, Side, Verdict};
+use rover_terrain_drivers::DepthFrame;
+use std::sync::OnceLock;
 
 /// Forward step per frame of the straight drives, metres.
 const STEP: f64 = 0.05;
@@ -18,16 +20,37 @@ fn hazard(v: &Verdict, kind: HazardKind, side: Side) -> Option<f32> {
         .map(|h| h.distance_m)
 }
 
-/// Drive over `terrain` from the origin: before each frame after the first the rover
-/// goes `forward` metres, then turns `turn` radians (`steps[k - 1]`). The pipeline is
-/// told `odometry` × the true forward travel (or no odometry). Returns each frame's
-/// pose and verdict.
-fn drive(terrain: &Terrain, steps: &[(f64, f64)], odometry: Option<f64>) -> Vec<(Pose, Verdict)> {
+/// The frames of a drive over `terrain` from the origin: before each frame after the
+/// first the rover goes `steps[k - 1].0` metres forward, then turns `steps[k - 1].1`
+/// radians. Each frame comes with the pose it was rendered from.
+fn render(terrain: &Terrain, steps: &[(f64, f64)]) -> Vec<(Pose, DepthFrame)> {
     let config = Config::default();
-    let mut p = Pipeline::new(config.clone()).unwrap();
     let mut pose = Pose::default();
-    let mut out = Vec::new();
+    let mut out = Vec::with_capacity(steps.len() + 1);
     for k in 0..=steps.len() {
+        if k > 0 {
+            let (fwd, turn) = steps[k - 1];
+            pose.x += fwd * pose.heading.cos();
+            pose.y += fwd * pose.heading.sin();
+            pose.heading += turn;
+        }
+        out.push((pose, sim::render_from(terrain, &config, pose)));
+    }
+    out
+}
+
+/// Replay a drive's `frames` ([`render`]ed from `steps`) through one pipeline, told
+/// `odometry` × the true forward travel (or no odometry). Returns each frame's pose
+/// and verdict.
+fn replay(
+    frames: &[(Pose, DepthFrame)],
+    steps: &[(f64, f64)],
+    odometry: Option<f64>,
+) -> Vec<(Pose, Verdict)> {
+    assert_eq!(frames.len(), steps.len() + 1, "frames and steps disagree");
+    let mut p = Pipeline::new(Config::default()).unwrap();
+    let mut out = Vec::with_capacity(frames.len());
+    for (k, (pose, frame)) in frames.iter().enumerate() {
         let motion = match (k, odometry) {
             (0, _) | (_, None) => Err(Untrusted::NoOdometry),
             (_, Some(scale)) => Ok(Motion {
@@ -37,16 +60,14 @@ fn drive(terrain: &Terrain, steps: &[(f64, f64)], odometry: Option<f64>) -> Vec<
                 ..Motion::default()
             }),
         };
-        if k > 0 {
-            let (fwd, turn) = steps[k - 1];
-            pose.x += fwd * pose.heading.cos();
-            pose.y += fwd * pose.heading.sin();
-            pose.heading += turn;
-        }
-        let frame = sim::render_from(terrain, &config, pose);
-        out.push((pose, p.process_moved(&frame, motion).unwrap().clone()));
+        out.push((*pose, p.process_moved(frame, motion).unwrap().clone()));
     }
     out
+}
+
+/// [`render`] then [`replay`]: each frame's pose and verdict.
+fn drive(terrain: &Terrain, steps: &[(f64, f64)], odometry: Option<f64>) -> Vec<(Pose, Verdict)> {
+    replay(&render(terrain, steps), steps, odometry)
 }
 
 /// Where the near edge x = `edge` (terrain frame) of what stands in the left track
@@ -62,6 +83,16 @@ fn edge_ahead(pose: Pose, edge: f64) -> f64 {
 
 /// Near edge of [`block_ahead`], metres.
 const EDGE: f64 = 1.515;
+
+/// The straight drive at [`block_ahead`]: [`STEP`]s until its edge is 0.165 m ahead.
+const BLOCK_STEPS: [(f64, f64); 27] = [(STEP, 0.0); 27];
+
+/// [`BLOCK_STEPS`]' frames, rendered once for the tests that replay them with
+/// different odometry.
+fn block_drive() -> &'static [(Pose, DepthFrame)] {
+    static FRAMES: OnceLock<Vec<(Pose, DepthFrame)>> = OnceLock::new();
+    FRAMES.get_or_init(|| render(&block_ahead(), &BLOCK_STEPS))
+}
 
 /// A 0.15 m block in the left track, its near edge at [`EDGE`].
 fn block_ahead() -> Terrain {
@@ -162,14 +193,12 @@ fn assert_tracked(run: &[(Pose, Verdict)], tol: impl Fn(f64) -> f64) {
 
 #[test]
 fn a_block_keeps_its_place_into_the_blind_zone_down_to_the_wheels() {
-    // Straight on in 5 cm steps until the edge is 0.165 m ahead.
-    let steps = [(STEP, 0.0); 27];
-    let fused = drive(&block_ahead(), &steps, Some(1.0));
+    let fused = replay(block_drive(), &BLOCK_STEPS, Some(1.0));
     assert_tracked(&fused, |_| 0.02);
     assert!(fused.last().unwrap().1.memory.remembered_cells > 0);
     // Alone, each frame loses the block's near edge in the blind zone (from 0.64 m):
     // it reports what it sees of the block (its far part), or nothing.
-    let single = drive(&block_ahead(), &steps, None);
+    let single = replay(block_drive(), &BLOCK_STEPS, None);
     let lost = single.iter().filter(|(pose, v)| {
         let want = edge_ahead(*pose, EDGE) - 0.1;
         hazard(v, HazardKind::Step, Side::Left).is_none_or(|d| f64::from(d) > want + 0.1)
@@ -212,8 +241,7 @@ fn wheel_slip_errs_by_the_slip_only_and_never_behind_the_rover() {
     // ahead of the truth by 10 % of the travel since they were seen: in view, over
     // the ~5 frames (0.25 m) a cell's views are averaged; out of view (from ~0.7 m),
     // plus the travel since.
-    let steps = [(STEP, 0.0); 27];
-    let slipping = drive(&block_ahead(), &steps, Some(1.1));
+    let slipping = replay(block_drive(), &BLOCK_STEPS, Some(1.1));
     assert_tracked(&slipping, |truth| {
         0.02 + 0.1 * (0.25 + (0.75 - truth).max(0.0))
     });
@@ -530,8 +558,9 @@ fn the_pictures_show_what_was_remembered_and_how_long_ago() {
     assert!(std::fs::metadata(&png).unwrap().len() > 1000);
 }
 
-/// Drive straight at `terrain` in [`STEP`]s, memory and single frames, and the
-/// nearest `kind` hazard on any side per frame.
+/// Drive straight at `terrain` in [`STEP`]s, the frames rendered once and replayed
+/// with the memory and as single frames: the nearest `kind` hazard on any side per
+/// frame, each way.
 fn nearest_hazard_per_frame(
     terrain: &Terrain,
     frames: usize,
@@ -549,9 +578,10 @@ fn nearest_hazard_per_frame(
             })
             .collect()
     };
+    let frames = render(terrain, &steps);
     (
-        of(drive(terrain, &steps, Some(1.0))),
-        of(drive(terrain, &steps, None)),
+        of(replay(&frames, &steps, Some(1.0))),
+        of(replay(&frames, &steps, None)),
     )
 }
 

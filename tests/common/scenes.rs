@@ -17,17 +17,35 @@ pub fn analyse(elements: Vec<Element>, config: &Config) -> Verdict {
 /// The verdict on a frame of `elements` with Kinect v1 noise drawn from `seed`.
 #[allow(dead_code)] // not every test binary uses it
 pub fn analyse_noisy(elements: Vec<Element>, config: &Config, seed: u64) -> Verdict {
-    let mut frame = sim::render(&Terrain::new(elements), config);
-    sim::KinectNoise {
-        seed,
-        ..Default::default()
-    }
-    .apply(&mut frame, config.camera.hfov_deg);
-    Pipeline::new(config.clone())
-        .unwrap()
-        .process(&frame)
-        .unwrap()
-        .clone()
+    let [v] = analyse_views(elements, config, [Some(seed)]);
+    v
+}
+
+/// The verdicts on one rendering of `elements`, once per view: clean (`None`) or
+/// with Kinect v1 noise drawn from the seed. The frame is rendered once, which is
+/// what a test of several views of a scene spends its time on.
+#[allow(dead_code)] // not every test binary uses it
+pub fn analyse_views<const N: usize>(
+    elements: Vec<Element>,
+    config: &Config,
+    views: [Option<u64>; N],
+) -> [Verdict; N] {
+    let clean = sim::render(&Terrain::new(elements), config);
+    views.map(|view| {
+        let mut frame = clean.clone();
+        if let Some(seed) = view {
+            sim::KinectNoise {
+                seed,
+                ..Default::default()
+            }
+            .apply(&mut frame, config.camera.hfov_deg);
+        }
+        Pipeline::new(config.clone())
+            .unwrap()
+            .process(&frame)
+            .unwrap()
+            .clone()
+    })
 }
 
 /// The default rover's left wheel track, side faces along both its edges.
