@@ -452,6 +452,27 @@ fn a_boulder_whose_foot_is_below_the_image_is_never_go() {
 }
 
 #[test]
+fn a_descent_met_at_grazing_incidence_is_measured_as_a_slope() {
+    // `near_edge -- 300 5304 rough` #158: the default rig over a 20° descent across
+    // the corridor from 1.93 m. Its rays meet the slope at under 2°, so it is seen one
+    // pixel row every several cells (at 2.03, 2.42, 2.53 m, ...). The face's first fit
+    // took only the cells within 0.25 m past the onset, one row, and fitted no plane:
+    // the descent was measured as a step down (gradient −90°) in a go.
+    let c = Config::default();
+    for toe in [1.9, 1.925, 1.95] {
+        let descent = Element::ramp(toe, 0.0, -20.0, 0.0, Extent::Full);
+        let [clean, noisy] = analyse_views(vec![descent], &c, [None, Some(158)]);
+        assert_go(&clean, 8, toe, -20.0, None);
+        assert_eq!(noisy.decision, Decision::Go, "{toe}: {:?}", noisy.hazards);
+        let f = noisy.feature.expect("a go has a feature");
+        assert_eq!(f.workcase, 8, "{toe}: {f:?}");
+        let (d, g) = (f.distance_m.unwrap(), f.gradient_deg.unwrap());
+        assert!((f64::from(d) - toe).abs() <= 0.03, "{toe}: {f:?}");
+        assert!((f64::from(g) + 20.0).abs() <= 1.5, "{toe}: {f:?}");
+    }
+}
+
+#[test]
 fn a_toe_below_the_image_is_measured_from_the_face_and_flagged() {
     // The paper's Table 2 case 3 with the default mount: the camera sees ground
     // from about 0.64 m, the toe is at 0.474 m.

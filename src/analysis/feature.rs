@@ -128,8 +128,15 @@ fn fit_face(
             && !ambiguous(f, c)
             && status(height(f, c), threshold) == Some(dir)
     };
+    // The first window reaches FIRST_WINDOW_M past the onset, and on to the next seen
+    // cell when none lies within it: ground met at a grazing angle is seen one pixel
+    // row every several cells, and a window holding the onset's row alone fits no
+    // slope.
     let in_window = |ix: usize, iy: usize| match onset[iy] {
-        Some(o) => s.x_centre(ix) <= s.x_centre(o.ix) + FIRST_WINDOW_M,
+        Some(o) => {
+            s.x_centre(ix) <= s.x_centre(o.ix) + FIRST_WINDOW_M
+                || (ix > o.ix && !(o.ix + 1..ix).any(|k| f.seen[s.cell(k, iy)]))
+        }
         None => false,
     };
     use_cell.fill(false);
