@@ -6,12 +6,8 @@ use rover_terrain::{Config, Pipeline, Verdict};
 
 /// The verdict on a clean frame of `elements`, rendered and analysed with `config`.
 pub fn analyse(elements: Vec<Element>, config: &Config) -> Verdict {
-    let frame = sim::render(&Terrain::new(elements), config);
-    Pipeline::new(config.clone())
-        .unwrap()
-        .process(&frame)
-        .unwrap()
-        .clone()
+    let [v] = analyse_views(elements, config, [None]);
+    v
 }
 
 /// The verdict on a frame of `elements` with Kinect v1 noise drawn from `seed`.
@@ -24,7 +20,6 @@ pub fn analyse_noisy(elements: Vec<Element>, config: &Config, seed: u64) -> Verd
 /// The verdicts on one rendering of `elements`, once per view: clean (`None`) or
 /// with Kinect v1 noise drawn from the seed. The frame is rendered once, which is
 /// what a test of several views of a scene spends its time on.
-#[allow(dead_code)] // not every test binary uses it
 pub fn analyse_views<const N: usize>(
     elements: Vec<Element>,
     config: &Config,
