@@ -162,6 +162,52 @@ fn a_trench_wall_in_a_cell_the_view_ends_in_makes_no_step_but_a_block_there_does
     }
 }
 
+#[test]
+fn a_trench_wall_the_view_ends_along_is_no_step_but_a_post_where_it_ends_is() {
+    // A 14.3° descent under the right track, capped 24 cm down past the corridor, seen
+    // by a Kinect v1 0.84 m high rolled -7° and pitched 43° (`sweep -- families 100
+    // 5401 random` #91): the view ends 2.7 m out along the trench's outer wall. In the
+    // outermost strip the cells it ends in hold the floor and the wall's top, too few
+    // points for a surface of their own, 18 cm above the floor: read as a bound on the
+    // strip's ground, a step. The strip's cells before showed the same wall.
+    let mut c = mounted([0.2404, -0.0140, 0.8450], [-7.3084, 43.1526, 3.3848]);
+    c.camera.min_range_m = 0.4919;
+    let (toe, g) = (1.4487, -14.3316);
+    let trench = || vec![Element::ramp(toe, -0.45, g, 0.0, RIGHT_TRACK).capped(Some(0.2358))];
+    assert_go(&analyse(trench(), &c), 10, toe, g, None);
+    // A post on the floor in that strip, where the view ends, its top under the
+    // wall's: off the wall's line, it is something new there, and bounds the strip.
+    for (x, y, width) in [(2.78, -0.675, 0.03), (2.83, -0.67, 0.02)] {
+        let mut scene = trench();
+        scene.push(Element::Block {
+            x_m: x,
+            y_m: y,
+            length_m: 0.04,
+            width_m: width,
+            height_m: 0.18,
+        });
+        let v = analyse(scene, &c);
+        assert_ne!(
+            v.decision,
+            Decision::Go,
+            "post at {x}, {y}: {:?}",
+            v.feature
+        );
+    }
+    // The mirror on the left track, the descent diagonal (-38.5°), seen noisy by a
+    // camera 1.01 m high yawed -9.9° (`oblique 100 5403` #44): the same wall on the
+    // corridor's left edge, its top noise-lifted into the cells the view ends in.
+    let mut c = mounted([0.2227, 0.0427, 1.0118], [-2.0455, 42.3385, -9.9009]);
+    c.camera.min_range_m = 0.4957;
+    let (toe, g) = (1.1341, -15.5405);
+    let descent = vec![Element::ramp(toe, 0.45, g, -38.5466, LEFT_TRACK)];
+    for v in analyse_views(descent, &c, [None, Some(5_403_044)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        let f = v.feature.expect("a go has a feature");
+        assert_eq!(f.workcase, 9, "{f:?}");
+    }
+}
+
 /// A 320×240 camera 0.9 m high pitched 20°, offset and yawed 9°: past 2.8 m its rows
 /// fall about one per cell on ground falling away at 12°.
 fn coarse_rig() -> Config {

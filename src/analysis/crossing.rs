@@ -50,6 +50,9 @@ pub fn steps_and_slopes(
             strip.clear();
             // The last two chosen (x, z): the strip's height and slope so far.
             let mut last: [Option<(f32, f32)>; 2] = [None, None];
+            // The last seen cell's face along the strip, [x, top, top's y], when it
+            // stood more than a wheel radius above that cell's ground (a trench's wall).
+            let mut wall: Option<[f32; 3]> = None;
             for ix in 0..f.spec.nx {
                 let c = f.spec.cell(ix, iy);
                 if !f.seen[c] {
@@ -60,18 +63,28 @@ pub fn steps_and_slopes(
                 let carried = continued(last, cell.x, tan_max);
                 // Beside a face along the strip (a trench's wall), the cell's ground.
                 let beside = ground_beside_face(cell, f.spec.y_centre(iy), vs);
+                // Seen whole, the ground beside a face along the strip, resolved or not.
+                let along = if past {
+                    None
+                } else {
+                    beside.or_else(|| {
+                        unresolved_ground(
+                            cell,
+                            (f.spec.x_centre(ix), f.spec.y_centre(iy)),
+                            vs,
+                            f.camera[1],
+                        )
+                    })
+                };
                 let z = if past {
                     // A lower bound; beside such a face the top is the face's, and
                     // the bound the ground's.
-                    beside.unwrap_or(cell.top.max(cell.z))
-                } else if let Some(z) = beside {
-                    z
-                } else if let Some(z) = unresolved_ground(
-                    cell,
-                    (f.spec.x_centre(ix), f.spec.y_centre(iy)),
-                    vs,
-                    f.camera[1],
-                ) {
+                    beside.unwrap_or(if wall_goes_on(cell, wall, f.spec.y_centre(iy), vs) {
+                        cell.foot
+                    } else {
+                        cell.top.max(cell.z)
+                    })
+                } else if let Some(z) = along {
                     z
                 } else {
                     // Of a cell's two surfaces, the one that continues the strip
@@ -89,6 +102,9 @@ pub fn steps_and_slopes(
                 }
                 if !past {
                     surface[c] = z;
+                    wall = along
+                        .filter(|&ground| cell.top - ground > r)
+                        .map(|_| [cell.x, cell.top, cell.top_y]);
                 }
                 last = [last[1], Some((cell.x, z))];
                 strip.push(StripCell {
@@ -105,6 +121,35 @@ pub fn steps_and_slopes(
         }
     }
 }
+
+/// Whether a cell past the horizon holds only the fringe of the face along its strip
+/// that the strip's last seen cell showed (`wall`: that cell's x, top and top's y,
+/// metres, when its ground lay more than a wheel radius below its top). The cell's
+/// upper band is under [`crate::grid::SURFACE_MIN_SHARE`] of its points (`crest` is
+/// `foot`); it lies within [`WALL_REACH_M`] of that cell; its top stands no higher
+/// than the face's did (within rough ground's spread, [`HIDDEN_TOP_MARGIN_M`]); and
+/// its top voxel hugs the strip's side ([`FACE_OFF_VOXELS`] off its centre line
+/// `y_mid`) on the face's line (within that much of the face's top). Its top is then
+/// the wall's, not a bound on the strip's ground: a trench's wall along the
+/// corridor's edge, its top level with the ground beside the trench, ran on into the
+/// cells the image's top edge cuts and made the floor "rise" to it (`sweep --
+/// families 100 5401 random` #91, `oblique 100 5403` #44 noisy). Anything new there
+/// still bounds the strip: a top higher than the wall's, off its line (a post
+/// standing in the strip), or a surface across the cell.
+fn wall_goes_on(cell: &Cell, wall: Option<[f32; 3]>, y_mid: f32, vs: f32) -> bool {
+    let side = FACE_OFF_VOXELS * vs;
+    cell.crest == cell.foot
+        && (cell.top_y - y_mid).abs() >= side
+        && wall.is_some_and(|[x, top, top_y]| {
+            cell.x - x <= WALL_REACH_M
+                && cell.top <= top + HIDDEN_TOP_MARGIN_M
+                && (cell.top_y - top_y).abs() <= side
+        })
+}
+
+/// How far past the last cell that showed a face along the strip [`wall_goes_on`]
+/// takes it to run on, metres: three cells.
+const WALL_REACH_M: f32 = 0.15;
 
 /// A strip's height carried on to `x` from its last two chosen cells (`last`, (x, z),
 /// oldest first) at their slope, up to passable; the last height with one cell;
@@ -1580,6 +1625,7 @@ mod tests {
             y: 0.675,
             z: 0.5 * (crest + foot),
             top: crest,
+            top_y: crest_xy[1],
             low: foot,
             crest,
             foot,
@@ -1750,5 +1796,41 @@ mod tests {
         // Both bands spread across the cell: no side to hug.
         let c = cell(0.10, [1.025, 0.682], 0.0, [1.025, 0.672]);
         assert_eq!(ground_beside_face(&c, MID, VS), None);
+    }
+
+    #[test]
+    fn a_cut_cell_reads_as_the_wall_only_where_its_top_runs_on_along_the_wall() {
+        // The strip's last seen cell: the wall at y = 0.7, its top at 0 over a floor
+        // 22 cm down, 5 cm back.
+        let wall = Some([0.975, 0.0, 0.699]);
+        // A cut cell of floor whose top (too few points for a surface) is the wall's.
+        let floor = |top: f32, top_y: f32| Cell {
+            top,
+            top_y,
+            ..cell(-0.22, [1.025, 0.675], -0.22, [1.025, 0.675])
+        };
+        assert!(wall_goes_on(&floor(-0.03, 0.697), wall, MID, VS));
+        // Noise-lifted by up to rough ground's spread, still the wall.
+        assert!(wall_goes_on(&floor(0.012, 0.697), wall, MID, VS));
+        // Higher than the wall: something new stands there.
+        assert!(!wall_goes_on(&floor(0.03, 0.697), wall, MID, VS));
+        // A top on the strip's centre line or off the wall's line: a post in the strip.
+        assert!(!wall_goes_on(&floor(-0.05, 0.675), wall, MID, VS));
+        assert!(!wall_goes_on(&floor(-0.05, 0.652), wall, MID, VS));
+        // No wall before it, or the wall seen too far back.
+        assert!(!wall_goes_on(&floor(-0.03, 0.697), None, MID, VS));
+        assert!(!wall_goes_on(
+            &floor(-0.03, 0.697),
+            Some([0.8, 0.0, 0.699]),
+            MID,
+            VS
+        ));
+        // An upper band with points enough to be a surface is judged as one.
+        let surface = Cell {
+            top: -0.03,
+            top_y: 0.697,
+            ..cell(-0.05, [1.045, 0.675], -0.22, [1.010, 0.675])
+        };
+        assert!(!wall_goes_on(&surface, wall, MID, VS));
     }
 }
