@@ -206,6 +206,19 @@ fn a_trench_wall_the_view_ends_along_is_no_step_but_a_post_where_it_ends_is() {
         let f = v.feature.expect("a go has a feature");
         assert_eq!(f.workcase, 9, "{f:?}");
     }
+    // On a 320×240 camera 0.58 m high, a -13.8° descent under the right track met at
+    // -53.6° (`oblique 60 11` #24, noisy): the wall's fringe runs on through two cut
+    // cells, the last 16 cm past the last cell that resolved the wall.
+    let mut c = mounted([0.2886, -0.0796, 0.5770], [-0.2998, 34.5851, 7.6639]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.4367;
+    let (toe, g) = (1.0932, -13.8411);
+    let descent = vec![Element::ramp(toe, -0.45, g, -53.5803, RIGHT_TRACK)];
+    for v in analyse_views(descent, &c, [None, Some(11_024)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        let f = v.feature.expect("a go has a feature");
+        assert_eq!(f.workcase, 10, "{f:?}");
+    }
 }
 
 /// A 320×240 camera 0.9 m high pitched 20°, offset and yawed 9°: past 2.8 m its rows

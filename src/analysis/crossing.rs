@@ -50,8 +50,9 @@ pub fn steps_and_slopes(
             strip.clear();
             // The last two chosen (x, z): the strip's height and slope so far.
             let mut last: [Option<(f32, f32)>; 2] = [None, None];
-            // The last seen cell's face along the strip, [x, top, top's y], when it
-            // stood more than a wheel radius above that cell's ground (a trench's wall).
+            // The face along the strip the last seen cell showed, [x, top, top's y],
+            // when it stood more than a wheel radius above that cell's ground (a
+            // trench's wall); x moves on through cut cells that hold only its fringe.
             let mut wall: Option<[f32; 3]> = None;
             for ix in 0..f.spec.nx {
                 let c = f.spec.cell(ix, iy);
@@ -61,11 +62,11 @@ pub fn steps_and_slopes(
                 let cell = &f.cells[c];
                 let past = f.past[c];
                 let carried = continued(last, cell.x, tan_max);
-                // Beside a face along the strip (a trench's wall), the cell's ground.
+                // Beside a face along the strip (a trench's wall), the cell's ground;
+                // in a cell seen whole, also where its two surfaces do not say which.
                 let beside = ground_beside_face(cell, f.spec.y_centre(iy), vs);
-                // Seen whole, the ground beside a face along the strip, resolved or not.
                 let along = if past {
-                    None
+                    beside
                 } else {
                     beside.or_else(|| {
                         unresolved_ground(
@@ -76,16 +77,19 @@ pub fn steps_and_slopes(
                         )
                     })
                 };
-                let z = if past {
-                    // A lower bound; beside such a face the top is the face's, and
-                    // the bound the ground's.
-                    beside.unwrap_or(if wall_goes_on(cell, wall, f.spec.y_centre(iy), vs) {
+                // Past the horizon, only the fringe of the wall seen before.
+                let fringe =
+                    past && along.is_none() && wall_goes_on(cell, wall, f.spec.y_centre(iy), vs);
+                let z = if let Some(z) = along {
+                    // Past the horizon a lower bound: beside such a face the top is
+                    // the face's, and the bound the ground's.
+                    z
+                } else if past {
+                    if fringe {
                         cell.foot
                     } else {
                         cell.top.max(cell.z)
-                    })
-                } else if let Some(z) = along {
-                    z
+                    }
                 } else {
                     // Of a cell's two surfaces, the one that continues the strip
                     // (its last height carried on at its slope, up to passable).
@@ -102,10 +106,14 @@ pub fn steps_and_slopes(
                 }
                 if !past {
                     surface[c] = z;
-                    wall = along
-                        .filter(|&ground| cell.top - ground > r)
-                        .map(|_| [cell.x, cell.top, cell.top_y]);
                 }
+                wall = match (along, wall) {
+                    (Some(ground), _) if cell.top - ground > r => {
+                        Some([cell.x, cell.top, cell.top_y])
+                    }
+                    (None, Some([_, top, top_y])) if fringe => Some([cell.x, top, top_y]),
+                    _ => None,
+                };
                 last = [last[1], Some((cell.x, z))];
                 strip.push(StripCell {
                     x: cell.x,
@@ -124,9 +132,10 @@ pub fn steps_and_slopes(
 
 /// Whether a cell past the horizon holds only the fringe of the face along its strip
 /// that the strip's last seen cell showed (`wall`: that cell's x, top and top's y,
-/// metres, when its ground lay more than a wheel radius below its top). The cell's
-/// upper band is under [`crate::grid::SURFACE_MIN_SHARE`] of its points (`crest` is
-/// `foot`); it lies within [`WALL_REACH_M`] of that cell; its top stands no higher
+/// metres, when its ground lay more than a wheel radius below its top; x moved on to
+/// each cut cell after it holding only that fringe). The cell's upper band is under
+/// [`crate::grid::SURFACE_MIN_SHARE`] of its points (`crest` is `foot`); it lies
+/// within [`WALL_REACH_M`] of that x; its top stands no higher
 /// than the face's did (within rough ground's spread, [`HIDDEN_TOP_MARGIN_M`]); and
 /// its top voxel hugs the strip's side ([`FACE_OFF_VOXELS`] off its centre line
 /// `y_mid`) on the face's line (within that much of the face's top). Its top is then
@@ -147,8 +156,8 @@ fn wall_goes_on(cell: &Cell, wall: Option<[f32; 3]>, y_mid: f32, vs: f32) -> boo
         })
 }
 
-/// How far past the last cell that showed a face along the strip [`wall_goes_on`]
-/// takes it to run on, metres: three cells.
+/// How far past the last cell that showed a face along the strip (or its fringe)
+/// [`wall_goes_on`] takes it to run on, metres: three cells.
 const WALL_REACH_M: f32 = 0.15;
 
 /// A strip's height carried on to `x` from its last two chosen cells (`last`, (x, z),
