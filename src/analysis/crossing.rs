@@ -1267,12 +1267,17 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let min_run = f.cfg.analysis.gap_min_cells as usize;
     for iy in 0..s.ny {
         let side = f.region[iy].side();
+        // A track cell seen whole whose ground the strip did not follow holds the
+        // belly band's ground spilled over the band's edge ([`spilled`]): not the
+        // strip's ground, it neither ends a gap nor stands before one.
+        let track = f.region[iy] != Region::Belly;
+        let spilt = |c: usize| track && !f.past[c] && !surface[c].is_finite();
         // The last seen cells (x, z): the ground before a gap and its slope.
         let mut before = Recent::default();
         let mut run: Option<(usize, usize)> = None; // (first ix, length)
         for ix in 0..=s.nx {
             let c = (ix < s.nx).then(|| s.cell(ix, iy));
-            let seen_here = c.is_some_and(|c| f.seen[c]);
+            let seen_here = c.is_some_and(|c| f.seen[c] && !spilt(c));
             if seen_here || ix == s.nx {
                 if let Some((start, len)) = run.take() {
                     if len >= min_run {
