@@ -252,6 +252,55 @@ fn belly_ground_spilled_into_a_tracks_edge_strip_ends_no_gap() {
     }
 }
 
+#[test]
+fn a_tall_rock_whose_foot_hides_behind_a_lower_one_is_no_low_step() {
+    // Rocks on rough ground under a Kinect v2 0.67 m high, pitched 22° and rolled 9.8°
+    // (`sweep -- families 100 5501 random` #40): in the right track a 15 cm rock stands
+    // just behind an 8.4 cm one. With noise the dip between them goes unseen, so the
+    // step test sees the tall rock rise only from partway up its front (10 cm, under
+    // the wheel radius) and found nothing; the face analysis measured a step across
+    // the track (90°), and the verdict was go.
+    let mut c = mounted([0.0728, 0.0901, 0.6734], [9.7879, 22.4358, -2.7740]);
+    (c.camera.width, c.camera.height) = (512, 424);
+    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
+    c.camera.min_range_m = 0.4586;
+    let rock = |x_m, y_m, radius_m, height_m| Element::Rock {
+        x_m,
+        y_m,
+        radius_m,
+        height_m,
+    };
+    let field = |tall: f64| {
+        vec![
+            Element::Rough {
+                amplitude_m: 0.025,
+                correlation_m: 0.181_664_257,
+                seed: 9_366_177_978_744_093_217,
+            },
+            rock(2.6276, -0.5126, 0.1097, 0.0572),
+            rock(1.1724, 0.4082, 0.0796, 0.0451),
+            rock(1.5894, 0.3346, 0.0716, 0.0568),
+            rock(1.8734, -0.4838, 0.1483, 0.0838),
+            rock(2.4471, -0.3200, 0.1084, 0.0607),
+            rock(2.1544, -0.4817, 0.1506, tall),
+        ]
+    };
+    for v in analyse_views(field(0.1503), &c, [None, Some(5_501_040)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+        assert!(
+            v.hazards
+                .iter()
+                .any(|h| h.kind == HazardKind::Step && h.side == Side::Right),
+            "{:?}",
+            v.hazards
+        );
+    }
+    // The same rock 8 cm high: a low step the wheel climbs, go.
+    for v in analyse_views(field(0.08), &c, [None, Some(5_501_040)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    }
+}
+
 /// A 320×240 camera 0.9 m high pitched 20°, offset and yawed 9°: past 2.8 m its rows
 /// fall about one per cell on ground falling away at 12°.
 fn coarse_rig() -> Config {

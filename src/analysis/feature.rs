@@ -386,11 +386,17 @@ impl Affected {
 /// Also returns how uncertain the gradient is on rough ground (one standard deviation,
 /// degrees; see [`gradient_sd_deg`]) when the face runs on to where the view ends, so
 /// that only its first stretch is seen; else (the face seen whole, flat ground, a
-/// step) 0.
-pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) -> (Feature, f64) {
+/// step) 0. And, for a face measured as a step (±90°), how far the ground past its
+/// onsets stands off the rover's ground its way (metres, [`relief_past_onsets`]): a
+/// low step stands under a wheel radius.
+pub fn analyse(
+    f: &Frame,
+    onset: &mut [Option<Onset>],
+    use_cell: &mut [bool],
+) -> (Feature, f64, Option<f32>) {
     find_onsets(f, onset);
     let Some(affected) = affected_tracks(f, onset) else {
-        return (Feature::FLAT, 0.0);
+        return (Feature::FLAT, 0.0, None);
     };
     let (affected, face) = one_face_or_nearer(f, onset, use_cell, affected);
     let plane = face.map(|face| face.plane);
@@ -400,12 +406,14 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
     // whatever its flank (two 8 cm pebbles one behind the other in a track fitted as
     // a 40° face stopped the rover on flat ground). Measured as one, from the onsets.
     let too_steep = (f.cfg.rover.max_slope_deg..90.0).contains(&gradient.abs());
+    let relief = || relief_past_onsets(f, onset, affected);
     if too_steep
         && face.is_some_and(|face| !face.to_view_end)
-        && relief_past_onsets(f, onset, affected) < f.cfg.rover.wheel_radius_m as f32
+        && relief() < f.cfg.rover.wheel_radius_m as f32
     {
         (at_ref, gradient, alpha, nearest) = measures(f, onset, None, affected);
     }
+    let step_relief = (gradient.abs() >= 90.0).then(relief);
     let sd = match face {
         Some(face) if face.to_view_end && gradient.abs() < 90.0 => {
             let ground = ground_spread(f, onset, affected, &face.plane).unwrap_or(face.spread_m);
@@ -435,7 +443,7 @@ pub fn analyse(f: &Frame, onset: &mut [Option<Onset>], use_cell: &mut [bool]) ->
         gradient_deg: Some(gradient as f32),
         alpha_deg: matches!(workcase, 4 | 6 | 7).then_some(alpha as f32),
     };
-    (feature, sd)
+    (feature, sd, step_relief)
 }
 
 /// The farthest the ground departs from the rover's own (z = 0) the face's way, past

@@ -324,10 +324,13 @@ impl Analyzer {
         let too_little = seen_of_visible < frame.cfg.analysis.min_seen_fraction as f32;
         decide(verdict, too_little, nearest_unseen);
         if verdict.decision == Decision::Go {
-            let (measured, sd_deg) =
+            let (measured, sd_deg, step_relief) =
                 feature::analyse(&frame, &mut scratch.onset, &mut scratch.use_cell);
             verdict.feature = Some(measured);
-            if too_steep_face(&measured, sd_deg, &frame.cfg.rover, verdict) {
+            let rover = &frame.cfg.rover;
+            if too_steep_face(&measured, sd_deg, rover, verdict)
+                || too_high_step(&measured, step_relief, rover, verdict)
+            {
                 verdict.feature = None;
                 decide(verdict, false, nearest_unseen);
             }
@@ -444,6 +447,48 @@ fn too_steep_face(
     if steep <= rover.max_slope_deg || steep >= 90.0 - 1e-3 {
         return false;
     }
+    on_toe_line(measured, distance_m, HazardKind::Slope, rover, verdict);
+    true
+}
+
+/// Whether a go's measured face (`measured`) is a step (±90°) whose ground past its
+/// onsets stands a wheel radius or more off the rover's ground (`step_relief`,
+/// metres, from `feature::analyse`): then it is no low step, and a `step` hazard on
+/// each side its workcase names goes into `verdict`, where the toe line is nearest
+/// within that side's wheel track, metres.
+///
+/// The step test judges a strip's rise from the cells it sees; where the foot of what
+/// a strip climbs lies in a shadow (a 15 cm rock just behind an 8 cm one, the dip
+/// between them hidden by noise), it measures the rise only from partway up, and it
+/// found nothing, while the face analysis, seeing the rise across the track, measures
+/// a step. Higher than a wheel climbs, it stops the rover (`sweep -- families 100 5501
+/// random` #40, noisy, was a go).
+fn too_high_step(
+    measured: &Feature,
+    step_relief: Option<f32>,
+    rover: &RoverConfig,
+    verdict: &mut Verdict,
+) -> bool {
+    let (Some(relief), Some(distance_m)) = (step_relief, measured.distance_m) else {
+        return false;
+    };
+    if relief < rover.wheel_radius_m as f32 {
+        return false;
+    }
+    on_toe_line(measured, distance_m, HazardKind::Step, rover, verdict);
+    true
+}
+
+/// A hazard of `kind` on each side a measured face's workcase names, where its toe
+/// line (through `distance_m` at the reference line, metres) is nearest within that
+/// side's wheel track.
+fn on_toe_line(
+    measured: &Feature,
+    distance_m: f32,
+    kind: HazardKind,
+    rover: &RoverConfig,
+    verdict: &mut Verdict,
+) {
     // The toe line, x = distance − tan(alpha)·(y − y_ref), is read at the centre line
     // or, for one side, at that track's centre (as the workcase's distance is).
     let centre = rover.track_centre_m();
@@ -463,12 +508,11 @@ fn too_steep_face(
             .into_iter()
             .fold(f64::INFINITY, f64::min);
         verdict.add_hazard(Hazard {
-            kind: HazardKind::Slope,
+            kind,
             side,
             distance_m: nearest.max(0.0) as f32,
         });
     }
-    true
 }
 
 /// How many standard deviations of its gradient's uncertainty a face must stay under
