@@ -104,9 +104,7 @@ fn a_trench_wall_seen_broadside_by_a_rolled_offset_camera_neither_stops_nor_tilt
     // its points outnumber the floor's so far that both of a cell's bands lie on the
     // wall. Point-weighted, those cells bent the face (toe 13 cm early, 3° flat);
     // with noise the strip followed the wall and found a step.
-    let mut c = mounted([0.057, -0.097, 0.568], [-7.418, 30.606, 1.538]);
-    (c.camera.width, c.camera.height) = (512, 424);
-    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
+    let mut c = kinect_v2(mounted([0.057, -0.097, 0.568], [-7.418, 30.606, 1.538]));
     c.camera.min_range_m = 0.41;
     let (toe, g) = (1.5687, -14.654);
     let trench = || vec![Element::ramp(toe, 0.45, g, 0.0, LEFT_TRACK).capped(Some(0.2357))];
@@ -135,9 +133,7 @@ fn a_trench_wall_in_a_cell_the_view_ends_in_makes_no_step_but_a_block_there_does
     // 1.5 cm under the belly's level, read as a lower bound on the strip's ground
     // there: an 11 cm rise out of the floor, a step. The wall runs along the strip; the
     // strip's ground in that cell is the floor beside it.
-    let mut c = mounted([0.2374, 0.0231, 0.5687], [0.2513, 42.7841, 3.4992]);
-    (c.camera.width, c.camera.height) = (512, 424);
-    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
+    let mut c = kinect_v2(mounted([0.2374, 0.0231, 0.5687], [0.2513, 42.7841, 3.4992]));
     c.camera.min_range_m = 0.3127;
     let (toe, g) = (1.7745, -8.4315);
     let trench = || vec![Element::ramp(toe, -0.45, g, 0.0, RIGHT_TRACK).capped(Some(0.2094))];
@@ -260,9 +256,10 @@ fn a_tall_rock_whose_foot_hides_behind_a_lower_one_is_no_low_step() {
     // step test sees the tall rock rise only from partway up its front (10 cm, under
     // the wheel radius) and found nothing; the face analysis measured a step across
     // the track (90°), and the verdict was go.
-    let mut c = mounted([0.0728, 0.0901, 0.6734], [9.7879, 22.4358, -2.7740]);
-    (c.camera.width, c.camera.height) = (512, 424);
-    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
+    let mut c = kinect_v2(mounted(
+        [0.0728, 0.0901, 0.6734],
+        [9.7879, 22.4358, -2.7740],
+    ));
     c.camera.min_range_m = 0.4586;
     let rock = |x_m, y_m, radius_m, height_m| Element::Rock {
         x_m,
@@ -307,6 +304,13 @@ fn coarse_rig() -> Config {
     let mut c = mounted([0.122, -0.068, 0.895], [-1.221, 19.517, 9.436]);
     (c.camera.width, c.camera.height) = (320, 240);
     c.camera.min_range_m = 0.331;
+    c
+}
+
+/// `c` with a Kinect v2's camera: 512×424 pixels, 70.6°×60°.
+fn kinect_v2(mut c: Config) -> Config {
+    (c.camera.width, c.camera.height) = (512, 424);
+    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
     c
 }
 
@@ -923,9 +927,7 @@ fn a_rough_descent_crossed_by_under_one_row_per_cell_is_go_and_a_drop_off_there_
     // A Kinect v2 0.55 m high sees a rough 14.6° descent at about 7° incidence past
     // 2.6 m: under one pixel row per cell, so runs of cells several strips wide get
     // one or two points each, on the ground, or none. That was a drop-off.
-    let mut c = mounted([0.231, -0.058, 0.55], [1.481, 29.967, -7.297]);
-    (c.camera.width, c.camera.height) = (512, 424);
-    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
+    let mut c = kinect_v2(mounted([0.231, -0.058, 0.55], [1.481, 29.967, -7.297]));
     c.camera.min_range_m = 0.4;
     let rough = Element::Rough {
         amplitude_m: 0.025,
@@ -1041,9 +1043,7 @@ fn a_step_a_cell_or_two_past_the_images_bottom_edge_is_never_go() {
     // one cell of ground before it; a wheel over that cell rests on the step's face
     // (within a wheel radius of it), so the wheel heights the step test compares
     // started at the step's top, and the verdict was go.
-    let mut c = mounted([0.274, -0.003, 1.099], [0.929, 18.403, 4.941]);
-    (c.camera.width, c.camera.height) = (512, 424);
-    (c.camera.hfov_deg, c.camera.vfov_deg) = (70.6, 60.0);
+    let mut c = kinect_v2(mounted([0.274, -0.003, 1.099], [0.929, 18.403, 4.941]));
     c.camera.min_range_m = 0.321;
     let step = |x_m: f64, height_m: f64| Element::Step {
         x_m,
@@ -1149,9 +1149,7 @@ fn a_step_down_whose_shadow_is_one_cell_long_is_never_go() {
     // did not measure across it, so nothing judged the fall (a 22 cm step under the
     // right track 0.57 m out, a Kinect v2 0.93 m high pitched 37°: go, workcase 10;
     // a 12 cm one under the left track 1.28 m out, a D435-like camera 1.2 m high).
-    let mut kinect2 = mounted([0.042, 0.003, 0.930], [0.555, 36.723, -1.173]);
-    (kinect2.camera.width, kinect2.camera.height) = (512, 424);
-    (kinect2.camera.hfov_deg, kinect2.camera.vfov_deg) = (70.6, 60.0);
+    let mut kinect2 = kinect_v2(mounted([0.042, 0.003, 0.930], [0.555, 36.723, -1.173]));
     kinect2.camera.min_range_m = 0.323;
     let mut d435 = mounted([0.244, 0.092, 1.200], [0.167, 23.363, 2.883]);
     d435.camera = rover_terrain::config::CameraConfig {
