@@ -131,9 +131,9 @@ pub struct Cell {
     pub z: f32,
     /// Highest voxel centroid with at least [`TOP_MIN_POINTS`] points, metres.
     pub top: f32,
-    /// That voxel's centroid y (left), metres: which side of the cell a face's top
-    /// runs along. The mean `y` when no voxel has [`TOP_MIN_POINTS`].
-    pub top_y: f32,
+    /// That voxel's centroid (x, y), metres: which side of the cell a face's top runs
+    /// along. The mean (x, y) when no voxel has [`TOP_MIN_POINTS`].
+    pub top_xy: [f32; 2],
     /// Lowest voxel centroid with at least [`TOP_MIN_POINTS`] points, metres. Far
     /// below `top` when the cell holds a vertical face: two surfaces, the face's foot
     /// and its crest.
@@ -173,7 +173,7 @@ impl Cell {
         y: 0.0,
         z: 0.0,
         top: f32::NEG_INFINITY,
-        top_y: 0.0,
+        top_xy: [0.0; 2],
         low: f32::INFINITY,
         crest: 0.0,
         foot: 0.0,
@@ -581,7 +581,7 @@ impl VoxelGrid {
             cell.z += v.z * n;
             if a.n >= TOP_MIN_POINTS {
                 if v.z > cell.top {
-                    (cell.top, cell.top_y) = (v.z, v.y);
+                    (cell.top, cell.top_xy) = (v.z, [v.x, v.y]);
                 }
                 cell.low = cell.low.min(v.z);
             }
@@ -634,7 +634,7 @@ impl VoxelGrid {
         for &c in &self.touched_cells {
             let cell = &mut self.cells[c as usize];
             if cell.top == f32::NEG_INFINITY {
-                (cell.top, cell.top_y) = (cell.z, cell.y);
+                (cell.top, cell.top_xy) = (cell.z, [cell.x, cell.y]);
                 cell.low = cell.z;
             }
             let [wc, wf] = self.surface_n[c as usize];

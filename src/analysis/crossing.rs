@@ -109,7 +109,7 @@ pub fn steps_and_slopes(
                 }
                 wall = match (along, wall) {
                     (Some(ground), _) if cell.top - ground > r => {
-                        Some([cell.x, cell.top, cell.top_y])
+                        Some([cell.x, cell.top, cell.top_xy[1]])
                     }
                     (None, Some([_, top, top_y])) if fringe => Some([cell.x, top, top_y]),
                     _ => None,
@@ -148,11 +148,11 @@ pub fn steps_and_slopes(
 fn wall_goes_on(cell: &Cell, wall: Option<[f32; 3]>, y_mid: f32, vs: f32) -> bool {
     let side = FACE_OFF_VOXELS * vs;
     cell.crest == cell.foot
-        && (cell.top_y - y_mid).abs() >= side
+        && (cell.top_xy[1] - y_mid).abs() >= side
         && wall.is_some_and(|[x, top, top_y]| {
             cell.x - x <= WALL_REACH_M
                 && cell.top <= top + HIDDEN_TOP_MARGIN_M
-                && (cell.top_y - top_y).abs() <= side
+                && (cell.top_xy[1] - top_y).abs() <= side
         })
 }
 
@@ -1639,7 +1639,7 @@ mod tests {
             y: 0.675,
             z: 0.5 * (crest + foot),
             top: crest,
-            top_y: crest_xy[1],
+            top_xy: crest_xy,
             low: foot,
             crest,
             foot,
@@ -1820,7 +1820,7 @@ mod tests {
         // A cut cell of floor whose top (too few points for a surface) is the wall's.
         let floor = |top: f32, top_y: f32| Cell {
             top,
-            top_y,
+            top_xy: [1.025, top_y],
             ..cell(-0.22, [1.025, 0.675], -0.22, [1.025, 0.675])
         };
         assert!(wall_goes_on(&floor(-0.03, 0.697), wall, MID, VS));
@@ -1842,7 +1842,7 @@ mod tests {
         // An upper band with points enough to be a surface is judged as one.
         let surface = Cell {
             top: -0.03,
-            top_y: 0.697,
+            top_xy: [1.025, 0.697],
             ..cell(-0.05, [1.045, 0.675], -0.22, [1.010, 0.675])
         };
         assert!(!wall_goes_on(&surface, wall, MID, VS));

@@ -572,7 +572,7 @@ mod tests {
                         y,
                         z: 0.0,
                         top: 0.0,
-                        top_y: y,
+                        top_xy: [x, y],
                         low: 0.0,
                         crest: 0.0,
                         foot: 0.0,

@@ -684,7 +684,7 @@ fn blend(old: &Cell, w_old: f32, now: &Cell, w_now: f32) -> Cell {
         y: mix(old.y, now.y),
         z: mix(old.z, now.z),
         top: mix(old.top, now.top),
-        top_y: mix(old.top_y, now.top_y),
+        top_xy: mix2(old.top_xy, now.top_xy),
         low: mix(old.low, now.low),
         crest: mix(old.crest, now.crest),
         foot: mix(old.foot, now.foot),
@@ -731,6 +731,7 @@ fn moved(r: &Remembered, motion: &Rigid, step: f32, dt: f32) -> Remembered {
     let mut out = *r;
     let c = &mut out.cell;
     [c.x, c.y] = motion.apply([c.x, c.y]);
+    c.top_xy = motion.apply(c.top_xy);
     c.crest_xy = motion.apply(c.crest_xy);
     c.foot_xy = motion.apply(c.foot_xy);
     out.travel_m += step;
@@ -764,7 +765,7 @@ mod tests {
                 y,
                 z,
                 top: z,
-                top_y: y,
+                top_xy: [x, y],
                 low: z,
                 crest: z,
                 foot: z,
@@ -773,6 +774,36 @@ mod tests {
             };
         }
         cells
+    }
+
+    #[test]
+    fn a_moved_cell_carries_every_point_it_keeps_by_the_same_motion() {
+        let motion = Motion {
+            forward_m: 0.3,
+            lateral_m: -0.05,
+            dheading_rad: 0.2,
+            dt_s: 0.1,
+        };
+        let cell = Cell {
+            n: 20,
+            x: 1.0,
+            y: 0.6,
+            z: -0.1,
+            top: 0.0,
+            top_xy: [1.01, 0.69],
+            low: -0.2,
+            crest: -0.02,
+            foot: -0.2,
+            crest_xy: [1.02, 0.68],
+            foot_xy: [0.99, 0.62],
+        };
+        let r = seen_now(cell, 1, 1.0, 1.0, false);
+        let out = moved(&r, &Rigid::of(&motion), 0.3, 0.1).cell;
+        assert_eq!([out.x, out.y], motion.apply([cell.x, cell.y]));
+        assert_eq!(out.top_xy, motion.apply(cell.top_xy));
+        assert_eq!(out.crest_xy, motion.apply(cell.crest_xy));
+        assert_eq!(out.foot_xy, motion.apply(cell.foot_xy));
+        assert_eq!((out.top, out.z), (cell.top, cell.z));
     }
 
     fn seen_at(m: &TerrainMemory, spec: &GridSpec) -> Vec<(f32, f32)> {
