@@ -261,12 +261,6 @@ fn a_tall_rock_whose_foot_hides_behind_a_lower_one_is_no_low_step() {
         [9.7879, 22.4358, -2.7740],
     ));
     c.camera.min_range_m = 0.4586;
-    let rock = |x_m, y_m, radius_m, height_m| Element::Rock {
-        x_m,
-        y_m,
-        radius_m,
-        height_m,
-    };
     let field = |tall: f64| {
         vec![
             Element::Rough {
@@ -305,6 +299,16 @@ fn coarse_rig() -> Config {
     (c.camera.width, c.camera.height) = (320, 240);
     c.camera.min_range_m = 0.331;
     c
+}
+
+/// A rock (a half-ellipsoid) at (`x_m`, `y_m`) of `radius_m` and `height_m`, metres.
+fn rock(x_m: f64, y_m: f64, radius_m: f64, height_m: f64) -> Element {
+    Element::Rock {
+        x_m,
+        y_m,
+        radius_m,
+        height_m,
+    }
 }
 
 /// `c` with a Kinect v2's camera: 512×424 pixels, 70.6°×60°.
@@ -1427,12 +1431,6 @@ fn a_boulder_whose_shadow_hides_the_ground_beside_it_is_never_go() {
     let mut c = mounted([0.042, 0.004, 0.603], [8.419, 17.401, 8.760]);
     (c.camera.width, c.camera.height) = (320, 240);
     c.camera.min_range_m = 0.406;
-    let rock = |x_m, y_m, radius_m, height_m| Element::Rock {
-        x_m,
-        y_m,
-        radius_m,
-        height_m,
-    };
     let field = |third: Element| {
         vec![
             Element::Rough {
