@@ -24,7 +24,9 @@
 //! cameras give). `EXACT=1` draws each frame with the second renderer of
 //! `tests/common/second_renderer.rs` (its own rays, exact planes and faces) instead of
 //! `sim::render`; scenes it cannot draw (rough ground, stones, rocks on anything but
-//! flat ground) are skipped, and the last line counts them.
+//! flat ground) are skipped, and the last line counts them. `ALL=1` also prints every
+//! frame's verdict (decision, hazards, feature, tilt, how far each band is seen):
+//! two builds' outputs, sorted, diff to exactly the frames whose verdict changed.
 
 #[path = "../tests/common/second_renderer.rs"]
 mod second;
@@ -53,6 +55,8 @@ fn main() {
     let family = args.get(5).and_then(|s| s.parse::<usize>().ok());
     let (mut failures, mut total, mut false_go, mut excused) = (0, 0, 0, (0, 0));
     let exact = std::env::var("EXACT").is_ok_and(|v| v == "1");
+    // ALL=1: every frame's verdict, passed or not (see the module doc).
+    let all = std::env::var("ALL").is_ok_and(|v| v == "1");
     let mut not_drawn = 0;
     for i in 0..n {
         let (terrain, want, config, tol) = draw(&mut rng, mode, i, random_rig, family);
@@ -109,6 +113,12 @@ fn main() {
             } else {
                 compare(&want, if noisy { &tol.1 } else { &tol.0 }, v)
             };
+            if all {
+                println!(
+                    "#{i} noisy={noisy} {:?} hazards={:?} feature={:?} tilt={:?} seen_to={:?}",
+                    v.decision, v.hazards, v.feature, v.tilt, v.seen_to_m
+                );
+            }
             total += 1;
             if v.decision == Decision::Go && want.verdict != Decision::Go {
                 false_go += 1;

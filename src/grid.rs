@@ -520,7 +520,7 @@ impl VoxelGrid {
             if v < CUT_ROWS {
                 // The top rows' points mark the cells where the view is cut.
                 for &i in rb.idx.iter().filter(|&&i| i != u32::MAX) {
-                    let c = i as usize / s.nz;
+                    let c = (i / s.nz as u32) as usize;
                     if !self.cut[c] {
                         self.cut[c] = true;
                         // Capacity is the cell count: never reallocates.
@@ -559,6 +559,9 @@ impl VoxelGrid {
         self.voxels.clear();
         let s = self.spec;
         let vs = s.voxel_m;
+        // A voxel's cell is its index over the column height: divided in 32 bits,
+        // several times quicker than in 64 on many x86 cores.
+        let nz = s.nz as u32;
         for &i in &self.touched {
             let a = self.acc[i as usize];
             let n = a.n as f32;
@@ -569,7 +572,7 @@ impl VoxelGrid {
                 count: a.n,
             };
             self.voxels.push(v);
-            let c = i as usize / s.nz;
+            let c = (i / nz) as usize;
             let cell = &mut self.cells[c];
             if cell.n == 0 {
                 self.touched_cells.push(c as u32);
@@ -601,7 +604,7 @@ impl VoxelGrid {
             self.surface_n[c as usize] = [0.0; 2];
         }
         for (&i, v) in self.touched.iter().zip(&self.voxels) {
-            let c = i as usize / s.nz;
+            let c = (i / nz) as usize;
             let cell = &mut self.cells[c];
             let w = &mut self.surface_n[c];
             let n = v.count as f32;

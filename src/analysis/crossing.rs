@@ -882,8 +882,19 @@ fn strip_hazards(
     vs: f32,
     verdict: &mut Verdict,
 ) {
+    // No pair differs by more than `r` from a cell within `r` of the strip's highest
+    // and lowest wheels: such a cell is skipped without looking at its pairs.
+    let (low, high) = strip
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), c| {
+            (lo.min(c.wheel), hi.max(c.wheel))
+        });
+    let all_finite = strip.iter().all(|c| c.wheel.is_finite());
     for (i, a) in strip.iter().enumerate() {
         let (xi, zi) = (a.x, a.wheel);
+        if all_finite && high - zi <= r && zi - low <= r {
+            continue;
+        }
         for (j, b) in strip.iter().enumerate().skip(i + 1) {
             let (xj, zj) = (b.x, b.wheel);
             let (dx, dz) = (xj - xi, zj - zi);

@@ -119,34 +119,39 @@ fn fit_face(
 ) -> Option<Face> {
     let s = f.spec;
     let threshold = f.cfg.analysis.rise_threshold_m as f32;
-    let chosen = |iy: usize| chosen(f.region[iy], use_left, use_right);
-    let candidate = |ix: usize, iy: usize| -> bool {
+    // Only the chosen strips with an onset the face's way take part, and only from
+    // TOE_BAND_CELLS before it: no other cell is ever eligible.
+    let strips = || {
+        (0..s.ny).filter_map(move |iy| {
+            onset[iy]
+                .filter(|o| o.dir == dir && chosen(f.region[iy], use_left, use_right))
+                .map(|o| (iy, o))
+        })
+    };
+    let cells_of = |(iy, o): (usize, Onset)| {
+        (o.ix.saturating_sub(TOE_BAND_CELLS)..s.nx).map(move |ix| (ix, iy, o))
+    };
+    let candidate = |ix: usize, iy: usize, o: Onset| -> bool {
         let c = s.cell(ix, iy);
-        chosen(iy)
-            && matches!(onset[iy], Some(o) if o.dir == dir && ix >= o.ix)
+        ix >= o.ix
             && f.seen[c]
-            && !ambiguous(f, c)
-            && status(height(f, c), threshold) == Some(dir)
+            && !ambiguous(f, ix, iy)
+            && status(height_in(f, c, iy), threshold) == Some(dir)
     };
     // The first window reaches FIRST_WINDOW_M past the onset, and on to the next seen
     // cell when none lies within it: ground met at a grazing angle is seen one pixel
     // row every several cells, and a window holding the onset's row alone fits no
-    // slope.
-    let in_window = |ix: usize, iy: usize| match onset[iy] {
-        Some(o) => {
-            s.x_centre(ix) <= s.x_centre(o.ix) + FIRST_WINDOW_M
-                || (ix > o.ix && !(o.ix + 1..ix).any(|k| f.seen[s.cell(k, iy)]))
-        }
-        None => false,
+    // slope. It holds the strip's cells up to the returned row.
+    let window_end = |iy: usize, o: Onset| {
+        let reach = s.x_centre(o.ix) + FIRST_WINDOW_M;
+        let within = (o.ix..s.nx)
+            .take_while(|&ix| s.x_centre(ix) <= reach)
+            .last();
+        let next_seen = (o.ix + 1..s.nx)
+            .find(|&k| f.seen[s.cell(k, iy)])
+            .unwrap_or(s.nx);
+        within.unwrap_or(o.ix).max(next_seen)
     };
-    use_cell.fill(false);
-    for ix in 0..s.nx {
-        for iy in 0..s.ny {
-            if candidate(ix, iy) && in_window(ix, iy) {
-                use_cell[s.cell(ix, iy)] = true;
-            }
-        }
-    }
     let vs = f64::from(s.voxel_m);
     let past_toe = |p: &Plane, ix: usize, iy: usize| {
         let x0 = f64::from(s.origin[0]) + ix as f64 * vs;
@@ -170,21 +175,29 @@ fn fit_face(
         let c = s.cell(ix, iy);
         let cell = &f.cells[c];
         p.z(f64::from(cell.x), f64::from(cell.y)).abs() < f64::from(threshold)
-            && chosen(iy)
-            && matches!(onset[iy], Some(o) if o.dir == dir && ix + TOE_BAND_CELLS >= o.ix)
             && f.seen[c]
-            && !ambiguous(f, c)
+            && !ambiguous(f, ix, iy)
     };
+    use_cell.fill(false);
+    for (iy, o) in strips() {
+        let end = window_end(iy, o);
+        for ix in o.ix..=end.min(s.nx - 1) {
+            if candidate(ix, iy, o) {
+                use_cell[s.cell(ix, iy)] = true;
+            }
+        }
+    }
     let mut plane: Option<Plane> = None;
     for iteration in 0..10 {
         let Some((p, tol)) = weighted_plane(f, use_cell, iteration) else {
             break;
         };
         let mut changed = false;
-        for ix in 0..s.nx {
-            for iy in 0..s.ny {
+        for (iy, o) in strips() {
+            let end = window_end(iy, o);
+            for (ix, iy, o) in cells_of((iy, o)) {
                 let c = s.cell(ix, iy);
-                let eligible = candidate(ix, iy) || (iteration >= 2 && toe_band(&p, ix, iy));
+                let eligible = candidate(ix, iy, o) || (iteration >= 2 && toe_band(&p, ix, iy));
                 if !eligible {
                     if use_cell[c] {
                         use_cell[c] = false;
@@ -193,10 +206,9 @@ fn fit_face(
                     continue;
                 }
                 let cell = &f.cells[c];
-                let z = height(f, c);
+                let z = height_in(f, c, iy);
                 let r = f64::from(z) - p.z(f64::from(cell.x), f64::from(cell.y));
-                let ok =
-                    r.abs() <= tol && past_toe(&p, ix, iy) && (iteration >= 2 || in_window(ix, iy));
+                let ok = r.abs() <= tol && past_toe(&p, ix, iy) && (iteration >= 2 || ix <= end);
                 if ok != use_cell[c] {
                     use_cell[c] = ok;
                     changed = true;
@@ -340,19 +352,28 @@ const FACE_NOISE_M: f64 = 0.003;
 /// trench's wall, a ramp's side) the surface spread across the cell
 /// ([`ground_beside_face`]).
 fn height(f: &Frame, c: usize) -> f32 {
+    height_in(f, c, c % f.spec.ny)
+}
+
+/// [`height`] of cell `c` in strip `iy` (no division to find the strip).
+fn height_in(f: &Frame, c: usize, iy: usize) -> f32 {
     let s = f.spec;
     let cell = &f.cells[c];
-    ground_beside_face(cell, s.y_centre(c % s.ny), s.voxel_m).unwrap_or(cell.z)
+    ground_beside_face(cell, s.y_centre(iy), s.voxel_m).unwrap_or(cell.z)
 }
 
 /// Whether a track cell's height is neither surface's: a face along its strip seen
 /// broadside whose points outnumber the ground's there (a trench's wall on the
 /// corridor's edge). The face fit leaves it out: point-weighted, a strip of such
 /// cells would bend the plane toward itself and stay within its tolerance.
-fn ambiguous(f: &Frame, c: usize) -> bool {
+fn ambiguous(f: &Frame, ix: usize, iy: usize) -> bool {
     let s = f.spec;
-    let (ix, iy) = (c / s.ny, c % s.ny);
-    unresolved_face_along(&f.cells[c], s.x_centre(ix), s.y_centre(iy), s.voxel_m)
+    unresolved_face_along(
+        &f.cells[s.cell(ix, iy)],
+        s.x_centre(ix),
+        s.y_centre(iy),
+        s.voxel_m,
+    )
 }
 
 fn status(z: f32, threshold: f32) -> Option<Dir> {

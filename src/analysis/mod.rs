@@ -90,6 +90,11 @@ struct Fixed {
 #[derive(Debug, Clone)]
 struct View {
     seen: Vec<bool>,
+    /// A seen cell's top, metres; −∞ for a cell not seen: what a line of sight
+    /// passes below ([`visibility::ShadowPaths::shadowed`]), one load per cell.
+    shade: Vec<f32>,
+    /// The highest of `shade`, metres (−∞ when nothing is seen).
+    highest: f32,
     shadowed: Vec<bool>,
     beyond: Vec<bool>,
     past: Vec<bool>,
@@ -206,6 +211,8 @@ impl Analyzer {
             },
             view: View {
                 seen: vec![false; cells],
+                shade: vec![f32::NEG_INFINITY; cells],
+                highest: f32::NEG_INFINITY,
                 shadowed: vec![false; cells],
                 beyond: vec![false; cells],
                 past: vec![false; cells],
@@ -294,7 +301,7 @@ impl Analyzer {
         let seen_weight = seen_expected as f32 + known;
         verdict.seen_fraction = seen_weight / (self.fixed.expected_count + counted) as f32;
         self.mark_past(cut);
-        let visible = self.fixed.expected_count - self.mark_hidden(cells) + counted;
+        let visible = self.fixed.expected_count - self.mark_hidden() + counted;
         verdict.seen_to_m = self.seen_to();
         let frame = Frame::new(&self.fixed, &self.view, cells);
         let scratch = &mut self.scratch;
@@ -345,8 +352,12 @@ impl Analyzer {
         let min_pts = fx.cfg.analysis.min_points_per_cell;
         let mut seen_expected = 0usize;
         let mut nearest_unseen = f32::INFINITY;
-        for (i, (s, c)) in self.view.seen.iter_mut().zip(cells).enumerate() {
+        let v = &mut self.view;
+        v.highest = f32::NEG_INFINITY;
+        for (i, ((s, shade), c)) in v.seen.iter_mut().zip(&mut v.shade).zip(cells).enumerate() {
             *s = c.n >= min_pts;
+            *shade = if *s { c.top } else { f32::NEG_INFINITY };
+            v.highest = v.highest.max(*shade);
             if fx.expected[i] {
                 if *s {
                     seen_expected += 1;
@@ -397,13 +408,13 @@ impl Analyzer {
 
     /// Unseen expected cells the camera could not have seen: past the horizon
     /// (beyond view) or in the shadow of something seen. Returns how many.
-    fn mark_hidden(&mut self, cells: &[Cell]) -> usize {
+    fn mark_hidden(&mut self) -> usize {
         let (fx, v) = (&self.fixed, &mut self.view);
         let mut hidden = 0usize;
         for i in 0..v.shadowed.len() {
             let unseen = fx.expected[i] && !v.seen[i];
             v.beyond[i] = unseen && v.past[i];
-            v.shadowed[i] = unseen && !v.beyond[i] && fx.paths.shadowed(i, &v.seen, cells);
+            v.shadowed[i] = unseen && !v.beyond[i] && fx.paths.shadowed(i, &v.shade, v.highest);
             hidden += usize::from(v.beyond[i] || v.shadowed[i]);
         }
         hidden

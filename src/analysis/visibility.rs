@@ -82,6 +82,9 @@ pub fn explained(f: &Frame, ix: usize, iy: usize, target_z: f32) -> bool {
 pub struct ShadowPaths {
     start: Vec<u32>,
     entries: Vec<(u32, f32)>,
+    /// Whether every line descends from the camera (the camera above the ground):
+    /// then each path's heights only fall from its first entry to its last.
+    descending: bool,
 }
 
 impl ShadowPaths {
@@ -118,7 +121,11 @@ impl ShadowPaths {
             }
         }
         start.push(entries.len() as u32);
-        ShadowPaths { start, entries }
+        ShadowPaths {
+            start,
+            entries,
+            descending: camera[2] >= 0.0,
+        }
     }
 
     /// Whether the line of sight to `cell`'s ground crosses a cell flagged in `flags`.
@@ -128,11 +135,22 @@ impl ShadowPaths {
     }
 
     /// Whether the line of sight to `cell`'s ground passes below the top of a seen cell
-    /// (within 1 cm).
-    pub fn shadowed(&self, cell: usize, seen: &[bool], cells: &[crate::grid::Cell]) -> bool {
+    /// (within 1 cm). `shade`: per cell, a seen cell's top and −∞ for one not seen;
+    /// `highest`: the highest of them.
+    pub fn shadowed(&self, cell: usize, shade: &[f32], highest: f32) -> bool {
         let (a, b) = (self.start[cell] as usize, self.start[cell + 1] as usize);
+        // A line descending from the camera to the cell, walked back from the cell,
+        // only rises: once it passes over the highest top, nothing farther back
+        // reaches it.
+        let reach = if self.descending {
+            highest
+        } else {
+            f32::INFINITY
+        };
         self.entries[a..b]
             .iter()
-            .any(|&(j, z)| seen[j as usize] && cells[j as usize].top >= z - 0.01)
+            .rev()
+            .take_while(|&&(_, z)| z - 0.01 <= reach)
+            .any(|&(j, z)| shade[j as usize] >= z - 0.01)
     }
 }
