@@ -249,6 +249,38 @@ fn belly_ground_spilled_into_a_tracks_edge_strip_ends_no_gap() {
 }
 
 #[test]
+fn a_ramp_side_beside_a_track_the_view_cuts_is_no_belly_obstacle() {
+    // A 15.1° ramp under the right track, its toe line at 25.6°, seen by a Kinect v2
+    // 1.13 m high pitched 42°, rolled 5.8° and yawed 9.5° (`sweep -- families 100
+    // 5501 random` #55): from 2.9 m on the image's top edge cuts the track's cells or
+    // leaves them unseen. With noise, the one cut cell left in that row held 3 cm of
+    // the ramp's side, taken as the track's height; the ramp's side in the belly band
+    // beside it stood 40 cm above that, a `belly` hazard.
+    let mut c = kinect_v2(mounted(
+        [0.0632, -0.0945, 1.1328],
+        [5.8006, 42.0844, 9.5303],
+    ));
+    c.camera.min_range_m = 0.3854;
+    let (toe, g, alpha) = (0.8493, 15.1366, 25.5534);
+    let ramp = || vec![Element::ramp(toe, -0.45, g, alpha, RIGHT_TRACK)];
+    for v in analyse_views(ramp(), &c, [None, Some(5_501_055)]) {
+        assert_go(&v, 6, toe, g, Some(alpha));
+    }
+    // A post under the belly where the view ends still is no go.
+    let mut scene = ramp();
+    scene.push(Element::Block {
+        x_m: 2.85,
+        y_m: 0.0,
+        length_m: 0.1,
+        width_m: 0.1,
+        height_m: 0.6,
+    });
+    for v in analyse_views(scene, &c, [None, Some(5_501_055)]) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
+#[test]
 fn a_tall_rock_whose_foot_hides_behind_a_lower_one_is_no_low_step() {
     // Rocks on rough ground under a Kinect v2 0.67 m high, pitched 22° and rolled 9.8°
     // (`sweep -- families 100 5501 random` #40): in the right track a 15 cm rock stands

@@ -1113,10 +1113,14 @@ fn wheel_line(run: &[StripCell]) -> Option<Plane> {
 const SLOPE_STRAIGHTNESS_M: f32 = 0.03;
 
 /// Anything under the belly taller than the belly clearance above the higher of the
-/// two wheel tracks at the same distance (the median height of each track's cells in
-/// that row; a row with no track data borrows the nearest row within 3 cells, else
-/// the ground plane z = 0, unless the track there is past the sensor's horizon: then
-/// the row is beyond view and not judged). A belly cell beside a track is also
+/// two wheel tracks at the same distance (the median height of each track's cells
+/// seen whole in that row; a row with none borrows the nearest row within 3 cells,
+/// else the ground plane z = 0, unless the track there is past the sensor's horizon:
+/// then the row is beyond view and not judged). A cell the image's top edge cuts
+/// holds only what lies below the edge: a ramp rising out of view left in one such
+/// track cell a few centimetres of its side face, and that "track height" put the
+/// ramp's side in the belly band 40 cm above it (`sweep -- families 100 5501 random`
+/// #55 noisy). A belly cell beside a track is also
 /// measured against that track cell's upper surface: a face along the band edge is
 /// the side of what stands in the track. A belly cell off the band's edges that the
 /// image's top edge cuts, already more than a wheel radius above the tracks beside
@@ -1126,7 +1130,9 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
     let clearance = f.cfg.rover.belly_clearance_m as f32;
     let r = f.cfg.rover.wheel_radius_m as f32;
     let s = f.spec;
-    track_medians(f, values, track_ref, |c| f.seen[c].then(|| f.cells[c].z));
+    track_medians(f, values, track_ref, |c| {
+        (f.seen[c] && !f.past[c]).then(|| f.cells[c].z)
+    });
     for ix in 0..s.nx {
         let mut reference = f32::NEG_INFINITY;
         let mut beyond_view = false;
