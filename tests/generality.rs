@@ -281,6 +281,33 @@ fn a_ramp_side_beside_a_track_the_view_cuts_is_no_belly_obstacle() {
 }
 
 #[test]
+fn a_descent_whose_toe_line_passes_just_behind_the_rover_is_no_unknown_ground() {
+    // A full-width 15.6° descent whose toe line runs at 60° to the axle, seen by a
+    // Kinect v2 1.10 m high pitched 34.8° and rolled 7.1° (`sweep -- oblique 100 5503`
+    // #98): under the left track's outer strips the toe line passes 0.2 m behind the
+    // origin, so the ground there is seen first 14 cm down, and its line continued
+    // back met the rover's ground behind the origin: unseen change below the image,
+    // `unknown`. At the origin that line stands up to 2 cm down: ground the rover
+    // stands on, by the onset's own 3 cm.
+    let mut c = kinect_v2(mounted(
+        [0.1575, -0.0237, 1.1029],
+        [7.1331, 34.7728, 4.1728],
+    ));
+    c.camera.min_range_m = 0.4395;
+    let (g, alpha) = (-15.6112, 59.9654);
+    let descent = |toe: f64| vec![Element::ramp(toe, 0.0, g, alpha, Extent::Full)];
+    let toe = 0.9652;
+    for v in analyse_views(descent(toe), &c, [None, Some(5_503_098)]) {
+        assert_go(&v, 8, toe, g, None);
+    }
+    // Moved 0.2 m nearer, the line stands 3-4.5 cm down at the origin under those
+    // strips: not the rover's ground, and the change below the image is unknown.
+    for v in analyse_views(descent(toe - 0.2), &c, [None, Some(5_503_098)]) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
+#[test]
 fn a_tall_rock_whose_foot_hides_behind_a_lower_one_is_no_low_step() {
     // Rocks on rough ground under a Kinect v2 0.67 m high, pitched 22° and rolled 9.8°
     // (`sweep -- families 100 5501 random` #40): in the right track a 15 cm rock stands

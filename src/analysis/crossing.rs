@@ -344,9 +344,12 @@ fn ground_beyond(f: &Frame, surface: &[f32], iy: usize, from: usize) -> Option<f
 /// and slope test judges it).
 ///
 /// When that seen ground lies on one line over its first [`BLIND_FIT_M`] (within
-/// rough ground's spread, [`ROUGH_LINE_RMS_M`]) and, continued back toward the rover
-/// at that passable slope, meets z = 0 at or ahead of the origin, with and without its
-/// first cell (which the image's bottom edge cuts: a step's top seen with the upper
+/// rough ground's spread, [`ROUGH_LINE_RMS_M`]) and, continued back to the origin at
+/// that passable slope, stands there at most `rise_threshold_m` off z = 0 on the near
+/// side (its toe ahead of the origin, or so little behind it that the rover's ground
+/// there is flat by the onset's measure: a descent met at 60° whose toe line passes
+/// just behind the rover under one track, `sweep -- oblique 100 5503` #98), with and
+/// without its first cell (which the image's bottom edge cuts: a step's top seen with the upper
 /// part of its face fits a gentle line back to the rover), it is a ramp with its toe
 /// below the image (the paper's Table 2 case 3, measured by the feature analysis).
 /// Otherwise (a plateau, a step's top, ground below a fall, a boulder) the change is
@@ -356,6 +359,7 @@ fn ground_beyond(f: &Frame, surface: &[f32], iy: usize, from: usize) -> Option<f
 /// ([`inner_strips`]).
 pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let r = f.cfg.rover.wheel_radius_m as f32;
+    let rise = f.cfg.analysis.rise_threshold_m as f32;
     let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
     for region in [Region::Left, Region::Right] {
         let mut hidden = 0usize;
@@ -382,10 +386,13 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     (k, z0, rms as f32 <= ROUGH_LINE_RMS_M)
                 })
             };
-            // Continued back at a passable slope, it meets z = 0 at or ahead of the
-            // origin: a ramp whose toe is below the image.
+            // Continued back at a passable slope to the origin, it stands there at
+            // most the rise threshold off the rover's ground, on the near side (its
+            // toe ahead of the origin, or so little behind that the ground there is
+            // flat by the onset's measure): a ramp whose toe is below the image.
             let toe_ahead = |(k, z0, straight): (f32, f32, bool)| {
-                straight && k * z0 > 0.0 && k.abs() < tan_max && x0 - z0 / k >= 0.0
+                let at_rover = z0 - k * x0;
+                straight && k * z0 > 0.0 && k.abs() < tan_max && at_rover * k.signum() <= rise
             };
             // The farthest from the rover's ground the strip gets in that stretch, and
             // whether it is seen at that ground before (the change is then seen
@@ -1342,8 +1349,9 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// Whether the unseen run `start..end` at the near end of strip `iy` (no ground seen
 /// before it) is ground lowered out of the image: the ground seen from `end` on lies
 /// on one line over [`BLIND_FIT_M`] (within rough ground's spread,
-/// [`ROUGH_LINE_RMS_M`]), descending at a passable slope, which continued back toward
-/// the rover meets its ground (z = 0) at or ahead of the origin, and at that height
+/// [`ROUGH_LINE_RMS_M`]), descending at a passable slope, which continued back to the
+/// grid's near edge stands there at most `rise_threshold_m` below the rover's ground
+/// (z = 0: its toe ahead, or just behind, as in [`blind_rise`]), and at that height
 /// (never above z = 0) no cell of the run falls whole inside the image. The camera
 /// sees flat ground there; a descent whose toe lies below the image drops that
 /// ground under the image's bottom edge, so its first rows see the descent farther
@@ -1369,11 +1377,14 @@ fn below_view(
         return false;
     };
     let (k, z0) = (line.a as f32, line.z(f64::from(x0), 0.0) as f32);
+    // At the grid's near edge, the line stands at most the rise threshold below the
+    // rover's ground.
+    let at_rover = z0 + k * (s.origin[0] - x0);
     let toe_ahead = rms as f32 <= ROUGH_LINE_RMS_M
         && z0 < 0.0
         && k < 0.0
         && k > -tan_max
-        && x0 - z0 / k >= s.origin[0];
+        && at_rover >= -(f.cfg.analysis.rise_threshold_m as f32);
     toe_ahead
         && (start..end).all(|j| {
             let z = (z0 + k * (s.x_centre(j) - x0)).min(0.0);
