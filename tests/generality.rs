@@ -144,13 +144,7 @@ fn a_trench_wall_in_a_cell_the_view_ends_in_makes_no_step_but_a_block_there_does
     // A block 14 cm high on the floor against the wall, across the three outer strips
     // where the view ends: its front is across the strips, its top a rise the bound
     // proves.
-    let block = Element::Block {
-        x_m: 2.7,
-        y_m: -0.625,
-        length_m: 0.2,
-        width_m: 0.15,
-        height_m: 0.14,
-    };
+    let block = block_at(2.7, -0.625, 0.2, 0.15, 0.14);
     let mut scene = trench();
     scene.push(block);
     for v in analyse_views(scene, &c, [None, Some(5_201_047)]) {
@@ -175,13 +169,7 @@ fn a_trench_wall_the_view_ends_along_is_no_step_but_a_post_where_it_ends_is() {
     // wall's: off the wall's line, it is something new there, and bounds the strip.
     for (x, y, width) in [(2.78, -0.675, 0.03), (2.83, -0.67, 0.02)] {
         let mut scene = trench();
-        scene.push(Element::Block {
-            x_m: x,
-            y_m: y,
-            length_m: 0.04,
-            width_m: width,
-            height_m: 0.18,
-        });
+        scene.push(block_at(x, y, 0.04, width, 0.18));
         let v = analyse(scene, &c);
         assert_ne!(
             v.decision,
@@ -236,13 +224,7 @@ fn belly_ground_spilled_into_a_tracks_edge_strip_ends_no_gap() {
     }
     // A hole in the trench's floor along that strip, past the shadow: still a gap.
     let mut scene = descent();
-    scene.push(Element::Block {
-        x_m: 2.2,
-        y_m: -0.3,
-        length_m: 0.4,
-        width_m: 0.2,
-        height_m: -1.0,
-    });
+    scene.push(block_at(2.2, -0.3, 0.4, 0.2, -1.0));
     for v in analyse_views(scene, &c, [None, Some(11_037)]) {
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
     }
@@ -268,13 +250,7 @@ fn a_ramp_side_beside_a_track_the_view_cuts_is_no_belly_obstacle() {
     }
     // A post under the belly where the view ends still is no go.
     let mut scene = ramp();
-    scene.push(Element::Block {
-        x_m: 2.85,
-        y_m: 0.0,
-        length_m: 0.1,
-        width_m: 0.1,
-        height_m: 0.6,
-    });
+    scene.push(block_at(2.85, 0.0, 0.1, 0.1, 0.6));
     for v in analyse_views(scene, &c, [None, Some(5_501_055)]) {
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
     }
@@ -366,6 +342,18 @@ fn rock(x_m: f64, y_m: f64, radius_m: f64, height_m: f64) -> Element {
         x_m,
         y_m,
         radius_m,
+        height_m,
+    }
+}
+
+/// A box from `x_m` (its near edge) `length_m` along x, `width_m` across centred on
+/// `y_m`, `height_m` high (a hole when negative), metres.
+fn block_at(x_m: f64, y_m: f64, length_m: f64, width_m: f64, height_m: f64) -> Element {
+    Element::Block {
+        x_m,
+        y_m,
+        length_m,
+        width_m,
         height_m,
     }
 }
@@ -1037,13 +1025,7 @@ fn a_wall_or_a_steep_ramp_the_view_ends_in_is_never_go() {
         height_m: 0.234,
         extent: Extent::Right,
     };
-    let block = Element::Block {
-        x_m: 1.967,
-        y_m: -0.049,
-        length_m: 0.25,
-        width_m: 0.25,
-        height_m: 0.394,
-    };
+    let block = block_at(1.967, -0.049, 0.25, 0.25, 0.394);
     let steep = Element::ramp(1.673, 0.0, 32.35, 0.0, Extent::Right);
     for (element, c, side) in [
         (step, &qvga, Side::Right),
@@ -1071,13 +1053,7 @@ fn a_wall_or_a_steep_ramp_the_view_ends_in_is_never_go() {
         };
         assert_eq!(analyse(vec![low_step], c).decision, Decision::Go);
     }
-    let low_block = Element::Block {
-        x_m: 1.2,
-        y_m: 0.0,
-        length_m: 0.25,
-        width_m: 0.25,
-        height_m: 0.15,
-    };
+    let low_block = block_at(1.2, 0.0, 0.25, 0.25, 0.15);
     let v = analyse(vec![low_block], &low);
     assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
     // A half-plane ramp or step (y ≥ 0) has its side face along y = 0, inside the
@@ -1189,13 +1165,7 @@ fn a_one_track_ramp_rising_out_of_view_lifts_no_belly_cell_beside_it() {
     // the belly where the view ends.
     let v = analyse(vec![Element::ramp(toe, 0.45, 35.0, alpha, LEFT_TRACK)], &c);
     assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-    let block = Element::Block {
-        x_m: 2.7,
-        y_m: 0.0,
-        length_m: 0.25,
-        width_m: 0.25,
-        height_m: 0.45,
-    };
+    let block = block_at(2.7, 0.0, 0.25, 0.25, 0.45);
     let v = analyse(vec![block], &c);
     assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
     assert!(
@@ -1461,13 +1431,7 @@ fn a_one_track_ramps_side_face_split_between_belly_and_track_cells_is_not_under_
     }
     // Beside the same ramp, a block under the belly far taller than its clearance
     // still stops the rover.
-    let block = Element::Block {
-        x_m: 1.4,
-        y_m: -0.1,
-        length_m: 0.2,
-        width_m: 0.2,
-        height_m: 0.75,
-    };
+    let block = block_at(1.4, -0.1, 0.2, 0.2, 0.75);
     for v in analyse_views(vec![ramp, block], &c, [None, Some(114022)]) {
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
         assert!(
@@ -1663,13 +1627,7 @@ fn a_descending_tracks_wall_top_in_its_edge_strip_makes_no_step_but_a_block_ther
     // A block on the descending floor against the wall, its top at the belly's level
     // or above, is an obstacle the inner strips see too.
     for (x_m, height_m) in [(2.3, 0.15), (2.6, 0.22)] {
-        let block = Element::Block {
-            x_m,
-            y_m: 0.3,
-            length_m: 0.2,
-            width_m: 0.2,
-            height_m,
-        };
+        let block = block_at(x_m, 0.3, 0.2, 0.2, height_m);
         let scene = vec![slot.clone(), block];
         for v in analyse_views(scene, &c, [None, Some(4152)]) {
             assert_ne!(v.decision, Decision::Go, "{height_m} m at {x_m} m");
