@@ -284,6 +284,52 @@ fn a_descent_whose_toe_line_passes_just_behind_the_rover_is_no_unknown_ground() 
 }
 
 #[test]
+fn a_post_whose_front_the_view_ends_on_is_a_step_in_one_strip_too() {
+    // A D435-like camera 0.53 m high pitched 40° (`sweep -- hazards 100 5504 random`
+    // #90) ends its view at 1.94 m across the front of a 20 cm step: the cells the
+    // image's top edge cuts hold the front up to 16 cm. The step test judged that rise
+    // by the wheelbase of flat ground before it, which lies on a gentle line, as a
+    // rough ramp's bump: no step. The full-width step was left to the steep-exit test
+    // (`unknown`); a post 5 cm wide, in one strip, was a go.
+    let mut c = mounted([0.1561, -0.0695, 0.5255], [4.3343, 39.9865, 9.4852]);
+    c.camera = rover_terrain::config::CameraConfig {
+        width: 848,
+        height: 480,
+        fx: Some(416.36),
+        fy: Some(416.568),
+        cx: Some(424.053),
+        cy: Some(235.159),
+        min_range_m: 0.4397,
+        ..c.camera
+    };
+    let step_right = |v: &Verdict| {
+        v.hazards
+            .iter()
+            .any(|h| h.kind == HazardKind::Step && h.side == Side::Right)
+    };
+    for width in [0.05, 0.08] {
+        let post = vec![block_at(1.94, -0.45, 0.3, width, 0.2)];
+        for v in analyse_views(post, &c, [None, Some(7)]) {
+            assert_eq!(v.decision, Decision::Stop, "{width} m: {:?}", v.hazards);
+            assert!(step_right(&v), "{width} m: {:?}", v.hazards);
+        }
+    }
+    let step = vec![Element::Step {
+        x_m: 1.9438,
+        height_m: 0.199,
+        extent: Extent::Full,
+    }];
+    for v in analyse_views(step, &c, [None, Some(5_504_090)]) {
+        assert!(step_right(&v), "{:?}", v.hazards);
+    }
+    // A 9 cm post there, under the wheel radius, is climbed.
+    let low = vec![block_at(1.94, -0.45, 0.3, 0.05, 0.09)];
+    for v in analyse_views(low, &c, [None, Some(7)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    }
+}
+
+#[test]
 fn a_tall_rock_whose_foot_hides_behind_a_lower_one_is_no_low_step() {
     // Rocks on rough ground under a Kinect v2 0.67 m high, pitched 22° and rolled 9.8°
     // (`sweep -- families 100 5501 random` #40): in the right track a 15 cm rock stands

@@ -1068,14 +1068,19 @@ fn line_windows(
         end += 1;
     }
     // A run may end on a cell past the horizon (its height only a bound): the window
-    // behind it ends on the last cell seen whole.
+    // behind it ends on the last cell seen whole. When that is the run's start, the
+    // window holds none of the run's rise (flat ground before a post whose front the
+    // view ends on read as a gentle line, and the post as a rough ramp's bump: a go):
+    // there is no window behind.
     let last = if strip[j].past && j > i { j - 1 } else { j };
     let mut start = i;
     while start > 0 && joined(strip, start - 1) && strip[last].x - strip[start - 1].x <= wheelbase {
         start -= 1;
     }
-    [&strip[i..=end], &strip[start..=last]]
+    let behind = (last > i || !strip[j].past).then(|| &strip[start..=last]);
+    [Some(&strip[i..=end]), behind]
         .into_iter()
+        .flatten()
         .filter(|w| w.iter().all(|c| !c.past))
         .filter(move |w| w[w.len() - 1].x - w[0].x >= 0.9 * wheelbase)
         .filter_map(line_slope)
