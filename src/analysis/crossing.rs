@@ -391,8 +391,10 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             // toe ahead of the origin, or so little behind that the ground there is
             // flat by the onset's measure): a ramp whose toe is below the image.
             let toe_ahead = |(k, z0, straight): (f32, f32, bool)| {
-                let at_rover = z0 - k * x0;
-                straight && k * z0 > 0.0 && k.abs() < tan_max && at_rover * k.signum() <= rise
+                straight
+                    && k * z0 > 0.0
+                    && k.abs() < tan_max
+                    && from_rover_ground((k, z0, x0), 0.0, rise)
             };
             // The farthest from the rover's ground the strip gets in that stretch, and
             // whether it is seen at that ground before (the change is then seen
@@ -1351,6 +1353,16 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     }
 }
 
+/// Whether a line of slope `k` through height `z0` at `x0` (metres), continued back
+/// to `origin_x`, stands there at most `rise` (metres) off the rover's ground (z = 0)
+/// on the near side: below it for a rise, above it for a fall. Its toe then lies
+/// ahead of `origin_x`, or so little behind that the ground there is flat by the
+/// onset's own measure. [`blind_rise`] and [`below_view`] take a ramp whose toe is
+/// below the image by it.
+fn from_rover_ground((k, z0, x0): (f32, f32, f32), origin_x: f32, rise: f32) -> bool {
+    (z0 + k * (origin_x - x0)) * k.signum() <= rise
+}
+
 /// Whether the unseen run `start..end` at the near end of strip `iy` (no ground seen
 /// before it) is ground lowered out of the image: the ground seen from `end` on lies
 /// on one line over [`BLIND_FIT_M`] (within rough ground's spread,
@@ -1382,14 +1394,12 @@ fn below_view(
         return false;
     };
     let (k, z0) = (line.a as f32, line.z(f64::from(x0), 0.0) as f32);
-    // At the grid's near edge, the line stands at most the rise threshold below the
-    // rover's ground.
-    let at_rover = z0 + k * (s.origin[0] - x0);
+    let rise = f.cfg.analysis.rise_threshold_m as f32;
     let toe_ahead = rms as f32 <= ROUGH_LINE_RMS_M
         && z0 < 0.0
         && k < 0.0
         && k > -tan_max
-        && at_rover >= -(f.cfg.analysis.rise_threshold_m as f32);
+        && from_rover_ground((k, z0, x0), s.origin[0], rise);
     toe_ahead
         && (start..end).all(|j| {
             let z = (z0 + k * (s.x_centre(j) - x0)).min(0.0);

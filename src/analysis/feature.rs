@@ -128,9 +128,6 @@ fn fit_face(
                 .map(|o| (iy, o))
         })
     };
-    let cells_of = |(iy, o): (usize, Onset)| {
-        (o.ix.saturating_sub(TOE_BAND_CELLS)..s.nx).map(move |ix| (ix, iy, o))
-    };
     let candidate = |ix: usize, iy: usize, o: Onset| -> bool {
         let c = s.cell(ix, iy);
         ix >= o.ix
@@ -195,7 +192,7 @@ fn fit_face(
         let mut changed = false;
         for (iy, o) in strips() {
             let end = window_end(iy, o);
-            for (ix, iy, o) in cells_of((iy, o)) {
+            for ix in o.ix.saturating_sub(TOE_BAND_CELLS)..s.nx {
                 let c = s.cell(ix, iy);
                 let eligible = candidate(ix, iy, o) || (iteration >= 2 && toe_band(&p, ix, iy));
                 if !eligible {
