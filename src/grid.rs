@@ -9,6 +9,8 @@
 //! Projection, transform and binning are fused into [`VoxelGrid::bin`]: one pass over
 //! the depth image with the [`Projector`]'s tables, no intermediate cloud.
 
+use wide::{f32x4, i32x4, CmpEq};
+
 use crate::config::Config;
 use crate::mixed_pixels::MixedPixels;
 use crate::projection::Projector;
@@ -212,6 +214,168 @@ fn flush(acc: &mut [Acc], touched: &mut Vec<u32>, i: u32, run: &Acc) -> u32 {
     }
 }
 
+/// Pixels [`merge_row`] takes at a time: pixel k of a row adds to lane k % LANES.
+const LANES: usize = 4;
+
+/// Lane l's bit, 1 << l.
+const LANE_BIT: i32x4 = i32x4::new([1, 2, 4, 8]);
+
+/// A run's position sums, in [`LANES`] lanes (voxel units), and its points.
+#[derive(Clone, Copy)]
+struct LaneSums {
+    x: f32x4,
+    y: f32x4,
+    z: f32x4,
+    n: u32,
+}
+
+impl LaneSums {
+    const ZERO: LaneSums = LaneSums {
+        x: f32x4::ZERO,
+        y: f32x4::ZERO,
+        z: f32x4::ZERO,
+        n: 0,
+    };
+
+    /// Add the lanes whose bit is set in `on` (a mask, not a product: the others'
+    /// positions may be NaN).
+    #[inline(always)]
+    fn add(&mut self, on: u32, q: &[f32x4; 3]) {
+        let bits = i32x4::splat(on as i32) & LANE_BIT;
+        let keep: f32x4 = bytemuck::cast(bits.cmp_eq(LANE_BIT));
+        self.x += q[0] & keep;
+        self.y += q[1] & keep;
+        self.z += q[2] & keep;
+        self.n += on.count_ones();
+    }
+
+    /// Add all lanes.
+    #[inline(always)]
+    fn add_all(&mut self, q: &[f32x4; 3]) {
+        self.x += q[0];
+        self.y += q[1];
+        self.z += q[2];
+        self.n += LANES as u32;
+    }
+
+    /// The run's sums: its lanes added pairwise in a fixed order.
+    #[inline(always)]
+    fn total(&self) -> Acc {
+        let sum = |v: f32x4| {
+            let v = v.to_array();
+            (v[0] + v[2]) + (v[1] + v[3])
+        };
+        Acc {
+            sx: sum(self.x),
+            sy: sum(self.y),
+            sz: sum(self.z),
+            n: self.n,
+        }
+    }
+}
+
+/// The run [`merge_row`] is adding up: its voxel (`u32::MAX`: none yet) and sums.
+struct Merge<'a> {
+    acc: &'a mut [Acc],
+    touched: &'a mut Vec<u32>,
+    cur: u32,
+    run: LaneSums,
+    binned: u32,
+}
+
+impl Merge<'_> {
+    /// Take [`LANES`] pixels: voxel indices (`u32::MAX`: not binned) and positions.
+    #[inline(always)]
+    fn take(&mut self, ids: i32x4, q: &[f32x4; 3]) {
+        let same_as = |cur: u32| ids.cmp_eq(i32x4::splat(cur as i32)).move_mask() as u32;
+        let mut same = same_as(self.cur);
+        if same == (1 << LANES) - 1 {
+            // Inside a run: the common case.
+            self.run.add_all(q);
+            return;
+        }
+        let mut pending = !same_as(u32::MAX) & ((1 << LANES) - 1);
+        loop {
+            let fresh = pending & !same;
+            if fresh == 0 {
+                if pending != 0 {
+                    self.run.add(pending, q);
+                }
+                return;
+            }
+            // Lanes before the first pixel of another voxel end this run.
+            let p = fresh.trailing_zeros();
+            let before = (1u32 << p) - 1;
+            if pending & before != 0 {
+                self.run.add(pending & before, q);
+            }
+            self.binned += flush(self.acc, self.touched, self.cur, &self.run.total());
+            self.run = LaneSums::ZERO;
+            self.cur = ids.to_array()[p as usize] as u32;
+            pending &= !before;
+            same = same_as(self.cur);
+        }
+    }
+}
+
+/// The second half of binning one row: add runs of neighbouring pixels that share
+/// a voxel (pixels not binned between them do not end a run) and touch the
+/// accumulators once per run. A run is summed in [`LANES`] lanes (pixel k in lane
+/// k % LANES) with the `wide` crate's portable vectors, so that a stretch of one
+/// voxel's pixels is a few vector additions, not a chain of scalar ones (each waiting
+/// on the last: that chain was most of binning's time); the lanes are added in a
+/// fixed order, so the sums do not depend on the instruction set. Returns the points
+/// added.
+#[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
+fn merge_row(rb: &RowBuffers, acc: &mut [Acc], touched: &mut Vec<u32>) -> u32 {
+    let n = rb
+        .idx
+        .len()
+        .min(rb.qx.len())
+        .min(rb.qy.len())
+        .min(rb.qz.len());
+    let mut m = Merge {
+        acc,
+        touched,
+        cur: u32::MAX,
+        run: LaneSums::ZERO,
+        binned: 0,
+    };
+    let whole = n - n % LANES;
+    fn chunks(s: &[f32], whole: usize) -> &[[f32; LANES]] {
+        bytemuck::cast_slice(&s[..whole])
+    }
+    let ids: &[[u32; LANES]] = bytemuck::cast_slice(&rb.idx[..whole]);
+    for (((i, x), y), z) in ids
+        .iter()
+        .zip(chunks(&rb.qx, whole))
+        .zip(chunks(&rb.qy, whole))
+        .zip(chunks(&rb.qz, whole))
+    {
+        m.take(
+            bytemuck::cast(*i),
+            &[f32x4::from(*x), f32x4::from(*y), f32x4::from(*z)],
+        );
+    }
+    if whole < n {
+        // The row's last pixels, padded with pixels not binned.
+        let r = n - whole;
+        let mut ids = [u32::MAX; LANES];
+        ids[..r].copy_from_slice(&rb.idx[whole..n]);
+        let pad = |s: &[f32]| {
+            let mut a = [0.0f32; LANES];
+            a[..r].copy_from_slice(&s[whole..n]);
+            f32x4::from(a)
+        };
+        m.take(
+            bytemuck::cast(ids),
+            &[pad(&rb.qx), pad(&rb.qy), pad(&rb.qz)],
+        );
+    }
+    let (cur, run) = (m.cur, m.run.total());
+    m.binned + flush(m.acc, m.touched, cur, &run)
+}
+
 /// What [`index_row`] needs about the row and the grid, in voxel units.
 #[derive(Clone, Copy)]
 struct RowParams {
@@ -294,11 +458,12 @@ fn drop_mixed(
 
 /// The branch-free half of binning one row: every pixel's voxel index (`u32::MAX`
 /// when out of range or outside the grid) and position in voxel units. Returns the
-/// number of pixels in range. Written as plain indexed arithmetic so that it
-/// vectorises; compiled for several instruction sets and picked at run time (same
-/// results on each: Rust never fuses multiply-adds on its own).
+/// number of pixels in range and how many of them fall inside the grid. Written as
+/// plain indexed arithmetic so that it vectorises; compiled for several instruction
+/// sets and picked at run time (same results on each: Rust never fuses multiply-adds
+/// on its own).
 #[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
-fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffers) -> u32 {
+fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffers) -> [u32; 2] {
     let n = cols.x.len().min(pixels.len()).min(rb.idx.len());
     let (cx_t, cy_t, cz_t, pixels) = (&cols.x[..n], &cols.y[..n], &cols.z[..n], &pixels[..n]);
     let (idx, qx, qy, qz) = (
@@ -307,7 +472,7 @@ fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffer
         &mut rb.qy[..n],
         &mut rb.qz[..n],
     );
-    let mut valid = 0u32;
+    let (mut valid, mut in_grid) = (0u32, 0u32);
     for k in 0..n {
         let d = pixels[k];
         let in_range = (d >= p.min_mm) & (d <= p.max_mm);
@@ -342,12 +507,13 @@ fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffer
             )
         };
         let i = ix * p.strides[0] + iy * p.strides[1] + iz;
+        in_grid += u32::from(inside);
         idx[k] = if inside { i as u32 } else { u32::MAX };
         qx[k] = x;
         qy[k] = y;
         qz[k] = h;
     }
-    valid
+    [valid, in_grid]
 }
 
 /// The projector's per-column rays in voxel units, as three arrays (vectorises).
@@ -448,8 +614,8 @@ impl VoxelGrid {
     ///
     /// Each row is done in two steps: a branch-free pass that the compiler vectorises
     /// computes every pixel's voxel index (or `u32::MAX`) and its position in voxel
-    /// units; a scalar pass then adds runs of neighbouring pixels that share a voxel
-    /// in registers and touches memory once per run.
+    /// units; a second pass ([`merge_row`]) then adds runs of neighbouring pixels
+    /// that share a voxel in registers and touches memory once per run.
     pub fn bin(
         &mut self,
         projector: &Projector,
@@ -500,7 +666,7 @@ impl VoxelGrid {
         {
             let r = [row[0] * inv, row[1] * inv, row[2] * inv];
             let rb = &mut self.row;
-            let valid = index_row(
+            let [valid, in_grid] = index_row(
                 &self.cols,
                 pixels,
                 RowParams {
@@ -514,6 +680,10 @@ impl VoxelGrid {
                 rb,
             );
             stats.points_in += valid;
+            if in_grid == 0 {
+                // Nothing to bin (a row looking past the corridor): nor to filter.
+                continue;
+            }
             if mixed.is_on() {
                 stats.points_mixed += drop_mixed(mixed, jump, (depth, width), v, rb);
             }
@@ -528,24 +698,7 @@ impl VoxelGrid {
                     }
                 }
             }
-            // Merge runs of pixels in the same voxel.
-            let mut cur = u32::MAX;
-            let mut run = Acc::default();
-            for (((&i, &x), &y), &h) in rb.idx.iter().zip(&rb.qx).zip(&rb.qy).zip(&rb.qz) {
-                if i == u32::MAX {
-                    continue;
-                }
-                if i != cur {
-                    stats.points_binned += flush(&mut self.acc, &mut self.touched, cur, &run);
-                    cur = i;
-                    run = Acc::default();
-                }
-                run.n += 1;
-                run.sx += x;
-                run.sy += y;
-                run.sz += h;
-            }
-            stats.points_binned += flush(&mut self.acc, &mut self.touched, cur, &run);
+            stats.points_binned += merge_row(&self.row, &mut self.acc, &mut self.touched);
         }
         stats
     }
@@ -666,6 +819,48 @@ mod tests {
         assert_eq!(s.cell_at(2.99, 0.69), Some((59, 27)));
         assert_eq!(s.cell_at(3.01, 0.0), None);
         assert!((s.y_centre(14) - 0.025).abs() < 1e-6);
+    }
+
+    #[test]
+    fn merged_runs_add_each_binned_pixel_to_its_voxel() {
+        // 23 pixels (not a whole number of lanes): pixels not binned (with NaN
+        // positions) before, inside and between runs, runs across lane boundaries, a
+        // voxel that comes back after another, and one index past the accumulators.
+        const X: u32 = u32::MAX;
+        let idx = [
+            X, 5, 5, 5, X, 5, 7, 7, 7, 7, 7, 7, 7, 7, 7, 5, 5, X, X, 9, 9, 99, 3,
+        ];
+        let mut rb = RowBuffers::default();
+        rb.resize(idx.len());
+        rb.idx.copy_from_slice(&idx);
+        for (k, &i) in idx.iter().enumerate() {
+            let q = if i == X { f32::NAN } else { k as f32 + 0.25 };
+            (rb.qx[k], rb.qy[k], rb.qz[k]) = (q, 2.0 * q, 3.0 - q);
+        }
+        let mut acc = vec![Acc::default(); 16];
+        let mut touched = Vec::with_capacity(16);
+        let binned = merge_row(&rb, &mut acc, &mut touched);
+        let in_grid = idx.iter().filter(|&&i| (i as usize) < acc.len()).count();
+        assert_eq!(
+            binned as usize, in_grid,
+            "every pixel with an index in the grid, once"
+        );
+        assert_eq!(in_grid, 18);
+        assert_eq!(touched, [5, 7, 9, 3], "first touched first, each once");
+        for (v, a) in acc.iter().enumerate() {
+            let ks: Vec<f32> = (0..idx.len())
+                .filter(|&k| idx[k] == v as u32)
+                .map(|k| k as f32 + 0.25)
+                .collect();
+            assert_eq!(a.n as usize, ks.len(), "voxel {v}");
+            let sum: f32 = ks.iter().sum();
+            assert!((a.sx - sum).abs() < 1e-4, "voxel {v}: {} {sum}", a.sx);
+            assert!((a.sy - 2.0 * sum).abs() < 1e-4, "voxel {v}");
+            assert!(
+                (a.sz - (3.0 * ks.len() as f32 - sum)).abs() < 1e-4,
+                "voxel {v}"
+            );
+        }
     }
 
     #[test]
