@@ -21,6 +21,7 @@
 use super::crossing::{ground_beside_face, unresolved_face_along};
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region};
+use crate::grid::{Cell, GridSpec};
 use crate::verdict::Feature;
 
 /// Which way the ground goes at an onset.
@@ -83,17 +84,17 @@ struct Face {
 const VIEW_END_CELLS: usize = 2;
 
 impl Face {
-    /// The face measured over `use_cell`'s cells.
-    fn measured(f: &Frame, use_cell: &[bool], plane: Plane) -> Face {
+    /// The face measured over the cells `sel` takes.
+    fn measured(f: &Frame, g: &Ground, sel: &Selection, plane: Plane) -> Face {
         let s = f.spec;
         let slope = plane.a.hypot(plane.b).max(1e-9);
         let mut run_m = 0.0f64;
         let mut spread = Spread::default();
         let mut to_view_end = false;
-        for (c, cell) in f.cells.iter().enumerate().filter(|&(c, _)| use_cell[c]) {
+        for (c, cell) in sel.taken(f) {
             let on_plane = plane.z(f64::from(cell.x), f64::from(cell.y));
             run_m = run_m.max(on_plane.abs() / slope);
-            spread.add(f64::from(height(f, c)) - on_plane);
+            spread.add(f64::from(g.z[c]) - on_plane);
             let (ix, iy) = (c / s.ny, c % s.ny);
             to_view_end |= !(ix + VIEW_END_CELLS + 1..s.nx)
                 .map(|k| s.cell(k, iy))
@@ -111,8 +112,9 @@ impl Face {
 /// Step 3: fit the face of the chosen tracks as a plane (see the module doc).
 fn fit_face(
     f: &Frame,
+    g: &Ground,
     onset: &[Option<Onset>],
-    use_cell: &mut [bool],
+    sel: &mut Selection,
     dir: Dir,
     use_left: bool,
     use_right: bool,
@@ -130,10 +132,7 @@ fn fit_face(
     };
     let candidate = |ix: usize, iy: usize, o: Onset| -> bool {
         let c = s.cell(ix, iy);
-        ix >= o.ix
-            && f.seen[c]
-            && !ambiguous(f, ix, iy)
-            && status(height_in(f, c, iy), threshold) == Some(dir)
+        ix >= o.ix && g.usable[c] && status(g.z[c], threshold) == Some(dir)
     };
     // The first window reaches FIRST_WINDOW_M past the onset, and on to the next seen
     // cell when none lies within it: ground met at a grazing angle is seen one pixel
@@ -150,18 +149,18 @@ fn fit_face(
         within.unwrap_or(o.ix).max(next_seen)
     };
     let vs = f64::from(s.voxel_m);
+    // Whether the whole cell lies past the toe line: the plane is linear, so its
+    // lowest corner over the cell (its highest, for a fall) decides.
+    let up = dir == Dir::Up;
     let past_toe = |p: &Plane, ix: usize, iy: usize| {
-        let x0 = f64::from(s.origin[0]) + ix as f64 * vs;
-        let y0 = f64::from(s.origin[1]) + iy as f64 * vs;
-        [(0.0, 0.0), (vs, 0.0), (0.0, vs), (vs, vs)]
-            .iter()
-            .all(|(dx, dy)| {
-                let z = p.z(x0 + dx, y0 + dy);
-                match dir {
-                    Dir::Up => z > 0.0,
-                    Dir::Down => z < 0.0,
-                }
-            })
+        let x = f64::from(s.origin[0]) + ix as f64 * vs + if (p.a < 0.0) == up { vs } else { 0.0 };
+        let y = f64::from(s.origin[1]) + iy as f64 * vs + if (p.b < 0.0) == up { vs } else { 0.0 };
+        let z = p.z(x, y);
+        if up {
+            z > 0.0
+        } else {
+            z < 0.0
+        }
     };
     // Once the plane is known, the cells where it runs between the ground and the rise
     // threshold (the band along its toe, up to TOE_BAND_CELLS before the strip's
@@ -171,22 +170,29 @@ fn fit_face(
     let toe_band = |p: &Plane, ix: usize, iy: usize| {
         let c = s.cell(ix, iy);
         let cell = &f.cells[c];
-        p.z(f64::from(cell.x), f64::from(cell.y)).abs() < f64::from(threshold)
-            && f.seen[c]
-            && !ambiguous(f, ix, iy)
+        g.usable[c] && p.z(f64::from(cell.x), f64::from(cell.y)).abs() < f64::from(threshold)
     };
-    use_cell.fill(false);
+    sel.eligible.clear();
+    for ix in 0..s.nx {
+        for (iy, o) in strips() {
+            if ix >= o.ix.saturating_sub(TOE_BAND_CELLS) {
+                // Capacity is the cell count: never reallocates.
+                sel.eligible.push(s.cell(ix, iy) as u32);
+            }
+        }
+    }
+    sel.on.fill(false);
     for (iy, o) in strips() {
         let end = window_end(iy, o);
         for ix in o.ix..=end.min(s.nx - 1) {
             if candidate(ix, iy, o) {
-                use_cell[s.cell(ix, iy)] = true;
+                sel.on[s.cell(ix, iy)] = true;
             }
         }
     }
     let mut plane: Option<Plane> = None;
     for iteration in 0..10 {
-        let Some((p, tol)) = weighted_plane(f, use_cell, iteration) else {
+        let Some((p, tol)) = weighted_plane(f, g, sel, iteration) else {
             break;
         };
         let mut changed = false;
@@ -196,18 +202,17 @@ fn fit_face(
                 let c = s.cell(ix, iy);
                 let eligible = candidate(ix, iy, o) || (iteration >= 2 && toe_band(&p, ix, iy));
                 if !eligible {
-                    if use_cell[c] {
-                        use_cell[c] = false;
+                    if sel.on[c] {
+                        sel.on[c] = false;
                         changed = true;
                     }
                     continue;
                 }
                 let cell = &f.cells[c];
-                let z = height_in(f, c, iy);
-                let r = f64::from(z) - p.z(f64::from(cell.x), f64::from(cell.y));
+                let r = f64::from(g.z[c]) - p.z(f64::from(cell.x), f64::from(cell.y));
                 let ok = r.abs() <= tol && past_toe(&p, ix, iy) && (iteration >= 2 || ix <= end);
-                if ok != use_cell[c] {
-                    use_cell[c] = ok;
+                if ok != sel.on[c] {
+                    sel.on[c] = ok;
                     changed = true;
                 }
             }
@@ -217,10 +222,10 @@ fn fit_face(
             break;
         }
     }
-    plane.map(|p| Face::measured(f, use_cell, p))
+    plane.map(|p| Face::measured(f, g, sel, p))
 }
 
-/// One fit of [`fit_face`]: the plane through the cells in `use_cell` and the
+/// One fit of [`fit_face`]: the plane through the cells `sel` takes and the
 /// tolerance about it that keeps a cell on the face (metres), or `None` with under
 /// three cells or a degenerate fit.
 ///
@@ -232,7 +237,12 @@ fn fit_face(
 /// residuals, the smaller of the RMS's and the median's estimate (a strip of cells off
 /// the face, such as a wall's points along a band edge or a plateau, inflates the RMS
 /// and would keep itself in), and at least [`MIN_TOLERANCE_M`].
-fn weighted_plane(f: &Frame, use_cell: &[bool], iteration: usize) -> Option<(Plane, f64)> {
+fn weighted_plane(
+    f: &Frame,
+    g: &Ground,
+    sel: &Selection,
+    iteration: usize,
+) -> Option<(Plane, f64)> {
     let weight = |cell: &crate::grid::Cell| {
         if iteration == 0 {
             1.0
@@ -240,13 +250,7 @@ fn weighted_plane(f: &Frame, use_cell: &[bool], iteration: usize) -> Option<(Pla
             f64::from(cell.n)
         }
     };
-    let used = || {
-        f.cells
-            .iter()
-            .enumerate()
-            .filter(|&(c, _)| use_cell[c])
-            .map(|(c, cell)| (cell, f64::from(height(f, c))))
-    };
+    let used = || sel.taken(f).map(|(c, cell)| (cell, f64::from(g.z[c])));
     let mut fit = PlaneFit::default();
     let mut n = 0usize;
     for (cell, z) in used() {
@@ -311,13 +315,13 @@ impl Spread {
     }
 }
 
-/// How well a plane explains the cells `use_cell` marks: the sum of squared height
+/// How well a plane explains the cells `sel` takes: the sum of squared height
 /// residuals, metres², and the number of cells.
-fn residuals(f: &Frame, use_cell: &[bool], p: &Plane) -> (f64, usize) {
+fn residuals(f: &Frame, g: &Ground, sel: &Selection, p: &Plane) -> (f64, usize) {
     let mut sse = 0.0;
     let mut n = 0;
-    for (c, cell) in f.cells.iter().enumerate().filter(|&(c, _)| use_cell[c]) {
-        let r = f64::from(height(f, c)) - p.z(f64::from(cell.x), f64::from(cell.y));
+    for (c, cell) in sel.taken(f) {
+        let r = f64::from(g.z[c]) - p.z(f64::from(cell.x), f64::from(cell.y));
         sse += r * r;
         n += 1;
     }
@@ -345,32 +349,90 @@ const SAME_FACE_F: f64 = 30.0 * 16.0;
 /// millimetres).
 const FACE_NOISE_M: f64 = 0.003;
 
-/// A track cell's ground height: its mean, or beside a face along its strip (a
-/// trench's wall, a ramp's side) the surface spread across the cell
-/// ([`ground_beside_face`]).
-fn height(f: &Frame, c: usize) -> f32 {
-    height_in(f, c, c % f.spec.ny)
+/// The feature analysis's buffers, sized for the grid and reused every frame.
+#[derive(Debug, Clone)]
+pub(crate) struct Scratch {
+    onset: Vec<Option<Onset>>,
+    selection: Selection,
+    z: Vec<f32>,
+    usable: Vec<bool>,
 }
 
-/// [`height`] of cell `c` in strip `iy` (no division to find the strip).
-fn height_in(f: &Frame, c: usize, iy: usize) -> f32 {
-    let s = f.spec;
-    let cell = &f.cells[c];
-    ground_beside_face(cell, s.y_centre(iy), s.voxel_m).unwrap_or(cell.z)
+impl Scratch {
+    /// Buffers for `spec`'s grid.
+    pub fn new(spec: &GridSpec) -> Self {
+        let cells = spec.cell_count();
+        Scratch {
+            onset: vec![None; spec.ny],
+            selection: Selection {
+                eligible: Vec::with_capacity(cells),
+                on: vec![false; cells],
+            },
+            z: vec![0.0; cells],
+            usable: vec![false; cells],
+        }
+    }
 }
 
-/// Whether a track cell's height is neither surface's: a face along its strip seen
-/// broadside whose points outnumber the ground's there (a trench's wall on the
-/// corridor's edge). The face fit leaves it out: point-weighted, a strip of such
-/// cells would bend the plane toward itself and stay within its tolerance.
-fn ambiguous(f: &Frame, ix: usize, iy: usize) -> bool {
+/// The cells one face fit may take, and those it takes.
+#[derive(Debug, Clone)]
+struct Selection {
+    /// Every cell the fit may take (the chosen strips' cells from
+    /// [`TOE_BAND_CELLS`] before their onsets on), in cell order.
+    eligible: Vec<u32>,
+    /// Per cell, whether the fit takes it.
+    on: Vec<bool>,
+}
+
+impl Selection {
+    /// The cells taken, in cell order (the order the fit's sums run in).
+    fn taken<'a>(&'a self, f: &'a Frame) -> impl Iterator<Item = (usize, &'a Cell)> + 'a {
+        self.eligible
+            .iter()
+            .map(|&c| c as usize)
+            .filter(|&c| self.on[c])
+            .map(|c| (c, &f.cells[c]))
+    }
+}
+
+/// What the steps read of each cell, worked out once per frame.
+struct Ground<'a> {
+    /// A cell's ground height, metres: its mean, or beside a face along its strip (a
+    /// trench's wall, a ramp's side) the surface spread across the cell
+    /// ([`ground_beside_face`]).
+    z: &'a [f32],
+    /// Whether the face fit may take the cell: seen, and its height one surface's.
+    /// Not so for a face along its strip seen broadside whose points outnumber the
+    /// ground's there (a trench's wall on the corridor's edge,
+    /// [`unresolved_face_along`]): point-weighted, a strip of such cells would bend
+    /// the plane toward itself and stay within its tolerance.
+    usable: &'a [bool],
+}
+
+/// Fill [`Ground::z`] for the cells of the track strips (the steps read no other).
+fn fill_heights(f: &Frame, z: &mut [f32]) {
     let s = f.spec;
-    unresolved_face_along(
-        &f.cells[s.cell(ix, iy)],
-        s.x_centre(ix),
-        s.y_centre(iy),
-        s.voxel_m,
-    )
+    for iy in (0..s.ny).filter(|&iy| f.region[iy] != Region::Belly) {
+        let y_mid = s.y_centre(iy);
+        for ix in 0..s.nx {
+            let c = s.cell(ix, iy);
+            let cell = &f.cells[c];
+            z[c] = ground_beside_face(cell, y_mid, s.voxel_m).unwrap_or(cell.z);
+        }
+    }
+}
+
+/// Fill [`Ground::usable`] for the cells of the track strips.
+fn fill_usable(f: &Frame, usable: &mut [bool]) {
+    let s = f.spec;
+    for iy in (0..s.ny).filter(|&iy| f.region[iy] != Region::Belly) {
+        let y_mid = s.y_centre(iy);
+        for ix in 0..s.nx {
+            let c = s.cell(ix, iy);
+            usable[c] =
+                f.seen[c] && !unresolved_face_along(&f.cells[c], s.x_centre(ix), y_mid, s.voxel_m);
+        }
+    }
 }
 
 fn status(z: f32, threshold: f32) -> Option<Dir> {
@@ -407,16 +469,21 @@ impl Affected {
 /// step) 0. And, for a face measured as a step (±90°), how far the ground past its
 /// onsets stands off the rover's ground its way (metres, [`relief_past_onsets`]): a
 /// low step stands under a wheel radius.
-pub fn analyse(
-    f: &Frame,
-    onset: &mut [Option<Onset>],
-    use_cell: &mut [bool],
-) -> (Feature, f64, Option<f32>) {
-    find_onsets(f, onset);
+pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) {
+    let Scratch {
+        onset,
+        selection,
+        z,
+        usable,
+    } = scratch;
+    fill_heights(f, z);
+    find_onsets(f, z, onset);
     let Some(affected) = affected_tracks(f, onset) else {
         return (Feature::FLAT, 0.0, None);
     };
-    let (affected, face) = one_face_or_nearer(f, onset, use_cell, affected);
+    fill_usable(f, usable);
+    let g = Ground { z, usable };
+    let (affected, face) = one_face_or_nearer(f, &g, onset, selection, affected);
     let plane = face.map(|face| face.plane);
     let (mut at_ref, mut gradient, mut alpha, mut nearest) = measures(f, onset, plane, affected);
     // A face too steep for a slope, seen whole (ground beyond it) and standing nowhere
@@ -434,7 +501,8 @@ pub fn analyse(
     let step_relief = (gradient.abs() >= 90.0).then(relief);
     let sd = match face {
         Some(face) if face.to_view_end && gradient.abs() < 90.0 => {
-            let ground = ground_spread(f, onset, affected, &face.plane).unwrap_or(face.spread_m);
+            let ground =
+                ground_spread(f, &g, onset, affected, &face.plane).unwrap_or(face.spread_m);
             gradient_sd_deg(gradient, ground, face.run_m)
         }
         _ => 0.0,
@@ -526,7 +594,13 @@ const GROUND_MIN_CELLS: u32 = 12;
 /// (robust: 1.4826 × the median absolute height, so a stone or two do not count),
 /// metres; `None` with fewer than [`GROUND_MIN_CELLS`] such cells seen (the toe
 /// below the image).
-fn ground_spread(f: &Frame, onset: &[Option<Onset>], a: Affected, plane: &Plane) -> Option<f64> {
+fn ground_spread(
+    f: &Frame,
+    g: &Ground,
+    onset: &[Option<Onset>],
+    a: Affected,
+    plane: &Plane,
+) -> Option<f64> {
     let s = f.spec;
     let sign = if a.dir == Dir::Up { 1.0 } else { -1.0 };
     let half = 0.5 * s.voxel_m;
@@ -542,7 +616,7 @@ fn ground_spread(f: &Frame, onset: &[Option<Onset>], a: Affected, plane: &Plane)
         for ix in (0..o.ix).filter(|&ix| before_toe(ix, iy)) {
             let c = s.cell(ix, iy);
             if f.seen[c] {
-                spread.add(f64::from(height(f, c)));
+                spread.add(f64::from(g.z[c]));
             }
         }
     }
@@ -553,7 +627,7 @@ fn ground_spread(f: &Frame, onset: &[Option<Onset>], a: Affected, plane: &Plane)
 
 /// Step 1: in each track strip, the first seen cell that rises (or falls) past the
 /// threshold, confirmed by the next seen cell; else the last unconfirmed one.
-fn find_onsets(f: &Frame, onset: &mut [Option<Onset>]) {
+fn find_onsets(f: &Frame, z: &[f32], onset: &mut [Option<Onset>]) {
     let s = f.spec;
     let threshold = f.cfg.analysis.rise_threshold_m as f32;
     for (iy, slot) in onset.iter_mut().enumerate() {
@@ -567,7 +641,7 @@ fn find_onsets(f: &Frame, onset: &mut [Option<Onset>]) {
             if !f.seen[c] {
                 continue;
             }
-            let st = status(height(f, c), threshold);
+            let st = status(z[c], threshold);
             match (pending, st) {
                 (Some(p), Some(d)) if p.dir == d => {
                     *slot = Some(p);
@@ -640,19 +714,20 @@ fn affected_tracks(f: &Frame, onset: &[Option<Onset>]) -> Option<Affected> {
 /// Returns the tracks the face affects and its plane (already fitted, reused).
 fn one_face_or_nearer(
     f: &Frame,
+    g: &Ground,
     onset: &[Option<Onset>],
-    use_cell: &mut [bool],
+    sel: &mut Selection,
     mut a: Affected,
 ) -> (Affected, Option<Face>) {
-    let both = fit_face(f, onset, use_cell, a.dir, a.left, a.right);
+    let both = fit_face(f, g, onset, sel, a.dir, a.left, a.right);
     let Some(both) = both.filter(|_| a.left && a.right) else {
         return (a, both);
     };
     let tc = f.cfg.rover.track_centre_m();
     let mut one = |left: bool| {
-        let face = fit_face(f, onset, use_cell, a.dir, left, !left)?;
-        let (own, n) = residuals(f, use_cell, &face.plane);
-        let (joint, _) = residuals(f, use_cell, &both.plane);
+        let face = fit_face(f, g, onset, sel, a.dir, left, !left)?;
+        let (own, n) = residuals(f, g, sel, &face.plane);
+        let (joint, _) = residuals(f, g, sel, &both.plane);
         Some((face, own, joint, n))
     };
     if let (Some(l), Some(r)) = (one(true), one(false)) {
@@ -786,6 +861,25 @@ mod tests {
         p
     }
 
+    /// What `analyse` works out before the face fit: heights, usable cells, onsets.
+    fn prepared(f: &Frame) -> Scratch {
+        let mut sc = Scratch::new(f.spec);
+        fill_heights(f, &mut sc.z);
+        fill_usable(f, &mut sc.usable);
+        find_onsets(f, &sc.z, &mut sc.onset);
+        sc
+    }
+
+    /// The face of a rise under both tracks.
+    fn fitted(f: &Frame) -> Face {
+        let mut sc = prepared(f);
+        let g = Ground {
+            z: &sc.z,
+            usable: &sc.usable,
+        };
+        fit_face(f, &g, &sc.onset, &mut sc.selection, Dir::Up, true, true).unwrap()
+    }
+
     const LEFT_TRACK: Extent = Extent::Band {
         from_m: 0.2,
         to_m: 0.7,
@@ -795,8 +889,7 @@ mod tests {
     fn onsets_lie_where_each_track_strip_first_rises() {
         let p = analysed(vec![Element::ramp(1.0, 0.0, 20.0, 0.0, Extent::Full)]);
         let f = p.analyzer().frame(p.grid());
-        let mut onset = vec![None; f.spec.ny];
-        find_onsets(&f, &mut onset);
+        let onset = prepared(&f).onset;
         // 20° from x = 1.0: row 21 (1.05-1.10 m) has its mean at 1.075 m, 2.7 cm up,
         // under the 3 cm threshold; row 22's mean (1.125 m) is 4.5 cm up.
         for (iy, o) in onset.iter().enumerate() {
@@ -818,14 +911,11 @@ mod tests {
     fn the_affected_tracks_are_those_whose_strips_rise() {
         let p = analysed(vec![]);
         let f = p.analyzer().frame(p.grid());
-        let mut onset = vec![None; f.spec.ny];
-        find_onsets(&f, &mut onset);
-        assert_eq!(affected_tracks(&f, &onset), None);
+        assert_eq!(affected_tracks(&f, &prepared(&f).onset), None);
 
         let p = analysed(vec![Element::ramp(1.0, 0.45, 15.0, 0.0, LEFT_TRACK)]);
         let f = p.analyzer().frame(p.grid());
-        find_onsets(&f, &mut onset);
-        let a = affected_tracks(&f, &onset).unwrap();
+        let a = affected_tracks(&f, &prepared(&f).onset).unwrap();
         assert_eq!((a.dir, a.left, a.right), (Dir::Up, true, false));
     }
 
@@ -840,12 +930,14 @@ mod tests {
             Element::ramp(1.5, -0.45, 22.0, 0.0, right),
         ]);
         let f = p.analyzer().frame(p.grid());
-        let mut onset = vec![None; f.spec.ny];
-        let mut use_cell = vec![false; f.spec.cell_count()];
-        find_onsets(&f, &mut onset);
-        let both = affected_tracks(&f, &onset).unwrap();
+        let mut sc = prepared(&f);
+        let both = affected_tracks(&f, &sc.onset).unwrap();
         assert!(both.left && both.right);
-        let (a, plane) = one_face_or_nearer(&f, &onset, &mut use_cell, both);
+        let g = Ground {
+            z: &sc.z,
+            usable: &sc.usable,
+        };
+        let (a, plane) = one_face_or_nearer(&f, &g, &sc.onset, &mut sc.selection, both);
         assert!(a.left && !a.right, "{a:?}");
         // The face returned is the left ramp's: toe 1.0 m, 15°.
         let plane = plane.unwrap().plane;
@@ -861,10 +953,7 @@ mod tests {
             let ramp = Element::ramp(1.2, 0.0, 18.0, 0.0, Extent::Full).capped(cap_m);
             let p = analysed(vec![ramp]);
             let f = p.analyzer().frame(p.grid());
-            let mut onset = vec![None; f.spec.ny];
-            let mut use_cell = vec![false; f.spec.cell_count()];
-            find_onsets(&f, &mut onset);
-            let face = fit_face(&f, &onset, &mut use_cell, Dir::Up, true, true).unwrap();
+            let face = fitted(&f);
             assert_eq!(face.to_view_end, to_view_end, "cap {cap_m:?}: {face:?}");
         }
     }
@@ -891,10 +980,7 @@ mod tests {
     fn the_face_fit_recovers_the_ramp_and_its_toe_line() {
         let p = analysed(vec![Element::ramp(1.2, 0.0, 18.0, 20.0, Extent::Full)]);
         let f = p.analyzer().frame(p.grid());
-        let mut onset = vec![None; f.spec.ny];
-        let mut use_cell = vec![false; f.spec.cell_count()];
-        find_onsets(&f, &mut onset);
-        let face = fit_face(&f, &onset, &mut use_cell, Dir::Up, true, true).unwrap();
+        let face = fitted(&f);
         let plane = face.plane;
         assert!((plane.gradient_deg() - 18.0).abs() < 0.3, "{plane:?}");
         // Clean: the cells lie on the plane within a few millimetres, and the fit
@@ -913,8 +999,7 @@ mod tests {
         };
         let p = analysed(vec![step]);
         let f = p.analyzer().frame(p.grid());
-        let mut onset = vec![None; f.spec.ny];
-        find_onsets(&f, &mut onset);
+        let onset = prepared(&f).onset;
         let a = affected_tracks(&f, &onset).unwrap();
         let (x, alpha) = step_toe(&f, &onset, a, 0.0);
         assert!((x - 1.3).abs() < 0.03 && alpha.abs() < 0.5, "{x} {alpha}");

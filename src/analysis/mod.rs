@@ -108,8 +108,7 @@ struct Scratch {
     track_ref: Vec<[f32; 2]>,
     surface: Vec<f32>,
     profile: Vec<[f32; 2]>,
-    onset: Vec<Option<feature::Onset>>,
-    use_cell: Vec<bool>,
+    feature: feature::Scratch,
 }
 
 /// Everything the analysis functions read about one frame.
@@ -223,8 +222,7 @@ impl Analyzer {
                 track_ref: vec![[f32::NAN; 2]; spec.nx],
                 surface: vec![f32::NAN; cells],
                 profile: vec![[f32::NAN; 2]; spec.nx],
-                onset: vec![None; spec.ny],
-                use_cell: vec![false; cells],
+                feature: feature::Scratch::new(&spec),
             },
         })
     }
@@ -331,8 +329,7 @@ impl Analyzer {
         let too_little = seen_of_visible < frame.cfg.analysis.min_seen_fraction as f32;
         decide(verdict, too_little, nearest_unseen);
         if verdict.decision == Decision::Go {
-            let (measured, sd_deg, step_relief) =
-                feature::analyse(&frame, &mut scratch.onset, &mut scratch.use_cell);
+            let (measured, sd_deg, step_relief) = feature::analyse(&frame, &mut scratch.feature);
             verdict.feature = Some(measured);
             let rover = &frame.cfg.rover;
             if too_steep_face(&measured, sd_deg, rover, verdict)
@@ -395,13 +392,31 @@ impl Analyzer {
     /// nothing is past.
     fn mark_past(&mut self, cut: &[bool]) {
         let fx = &self.fixed;
-        let any_cut = cut.contains(&true);
-        for iy in 0..fx.spec.ny {
+        let s = &fx.spec;
+        // Horizontal distance from the camera to a cell's centre, metres.
+        let [cx, cy, _] = fx.camera;
+        let distance = |ix: usize, iy: usize| {
+            let (dx, dy) = (s.x_centre(ix) - cx, s.y_centre(iy) - cy);
+            (dx * dx + dy * dy).sqrt()
+        };
+        // The cells a line of sight crosses have their centres within half a cell's
+        // diagonal of points nearer than its end: a line to a cell at least a cell
+        // nearer than the nearest cut cell crosses none, and is not walked.
+        let mut nearest_cut = f32::INFINITY;
+        for (i, _) in cut.iter().enumerate().filter(|&(_, &c)| c) {
+            nearest_cut = nearest_cut.min(distance(i / s.ny, i % s.ny));
+        }
+        let (any_cut, reach) = (nearest_cut.is_finite(), nearest_cut - s.voxel_m);
+        for iy in 0..s.ny {
             let mut past = false;
-            for ix in 0..fx.spec.nx {
-                let i = fx.spec.cell(ix, iy);
+            for ix in 0..s.nx {
+                let i = s.cell(ix, iy);
                 past |= cut[i];
-                self.view.past[i] = past || (any_cut && fx.expected[i] && fx.paths.crosses(i, cut));
+                self.view.past[i] = past
+                    || (any_cut
+                        && fx.expected[i]
+                        && distance(ix, iy) > reach
+                        && fx.paths.crosses(i, cut));
             }
         }
     }
@@ -595,6 +610,48 @@ mod tests {
                 }
             })
             .collect()
+    }
+
+    #[test]
+    fn past_the_horizon_is_every_line_of_sight_that_crosses_a_cut_cell() {
+        // mark_past walks only the lines to cells beyond the nearest cut cell: the
+        // same cells as walking every line, for cut cells near and far, on and off
+        // centre, and for a camera offset sideways.
+        for y_m in [0.0, 0.25] {
+            let mut config = Config::default();
+            config.mount.y_m = y_m;
+            let spec = GridSpec::from_config(&config);
+            let projector = Projector::new(&config, 640, 480);
+            let mut a = Analyzer::new(&config, spec, &projector).unwrap();
+            for cuts in [
+                vec![(20, 14)],
+                vec![(45, 3), (45, 4)],
+                vec![(12, 20), (50, 2)],
+                vec![(30, 10), (31, 11), (32, 12)],
+            ] {
+                let mut cut = vec![false; spec.cell_count()];
+                for &(ix, iy) in &cuts {
+                    cut[spec.cell(ix, iy)] = true;
+                }
+                a.mark_past(&cut);
+                let mut marked = 0;
+                for iy in 0..spec.ny {
+                    let mut behind = false;
+                    for ix in 0..spec.nx {
+                        let i = spec.cell(ix, iy);
+                        behind |= cut[i];
+                        let want =
+                            behind || (a.fixed.expected[i] && a.fixed.paths.crosses(i, &cut));
+                        assert_eq!(a.view.past[i], want, "{cuts:?} y {y_m}: cell ({ix}, {iy})");
+                        marked += usize::from(want && !behind);
+                    }
+                }
+                assert!(
+                    marked > 0,
+                    "{cuts:?}: some line of sight crosses a cut cell"
+                );
+            }
+        }
     }
 
     #[test]
