@@ -456,6 +456,24 @@ fn drop_mixed(
     dropped
 }
 
+/// How many of a row's depths (mm) lie in `[min_mm, max_mm]`, and the least of them
+/// (`u16::MAX` when none). Vectorises.
+#[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
+fn depths_in_range(pixels: &[u16], min_mm: u16, max_mm: u16) -> (u32, u16) {
+    let (mut n, mut nearest) = (0u32, u16::MAX);
+    // Counted in 16-bit lanes, as wide as the depths: a whole row is one chunk.
+    for chunk in pixels.chunks(usize::from(u16::MAX)) {
+        let mut count = 0u16;
+        for &d in chunk {
+            let in_range = (d >= min_mm) & (d <= max_mm);
+            count += u16::from(in_range);
+            nearest = nearest.min(if in_range { d } else { u16::MAX });
+        }
+        n += u32::from(count);
+    }
+    (n, nearest)
+}
+
 /// The branch-free half of binning one row: every pixel's voxel index (`u32::MAX`
 /// when out of range or outside the grid) and position in voxel units. Returns the
 /// number of pixels in range and how many of them fall inside the grid. Written as
@@ -524,6 +542,8 @@ struct ColumnRays {
     x: Vec<f32>,
     y: Vec<f32>,
     z: Vec<f32>,
+    /// The least of `x`.
+    x_min: f32,
 }
 
 /// One image row's per-pixel voxel indices and positions (voxel units).
@@ -655,6 +675,7 @@ impl VoxelGrid {
             self.cols.x = c.iter().map(|c| c[0] * inv).collect();
             self.cols.y = c.iter().map(|c| c[1] * inv).collect();
             self.cols.z = c.iter().map(|c| c[2] * inv).collect();
+            self.cols.x_min = self.cols.x.iter().copied().fold(f32::INFINITY, f32::min);
         }
         let mut stats = BinStats::default();
         let min_mm = min_mm.max(1);
@@ -665,6 +686,17 @@ impl VoxelGrid {
             .enumerate()
         {
             let r = [row[0] * inv, row[1] * inv, row[2] * inv];
+            // A row whose every ray runs forward and whose nearest point lies past the
+            // corridor's far end (a voxel's margin for rounding) bins nothing: the
+            // upper rows of a camera pitched down at ground beyond the corridor.
+            let (valid, nearest_mm) = depths_in_range(pixels, min_mm, max_mm);
+            let forward = self.cols.x_min + r[0];
+            if valid == 0
+                || (forward > 0.0 && t[0] + f32::from(nearest_mm) * 0.001 * forward >= nx + 1.0)
+            {
+                stats.points_in += valid;
+                continue;
+            }
             let rb = &mut self.row;
             let [valid, in_grid] = index_row(
                 &self.cols,
@@ -940,6 +972,48 @@ mod tests {
         assert!(mixed.is_mixed(&depth, 640, 320, v));
         // Its neighbours on either surface are kept.
         assert!(!mixed.is_mixed(&depth, 640, 319, v) && !mixed.is_mixed(&depth, 640, 321, v));
+    }
+
+    #[test]
+    fn rows_past_the_far_end_are_counted_and_a_point_just_inside_them_is_binned() {
+        // Flat ground seen by the default camera: its top rows see ground past the
+        // corridor's far end (3 m) and bin nothing. One pixel of row 20 sees a post's
+        // face 3 cm inside the far end instead: that row is binned, that point alone.
+        let c = Config::default();
+        let p = Projector::new(&c, 640, 480);
+        let spec = GridSpec::from_config(&c);
+        let o = p.origin();
+        let mut depth: Vec<u16> = (0..480)
+            .flat_map(|v| (0..640).map(move |u| (u, v)))
+            .map(|(u, v)| {
+                let r = p.ray(u, v);
+                if r.z < -1e-6 {
+                    ((-f64::from(o[2]) / r.z) * 1000.0).round().min(4500.0) as u16
+                } else {
+                    0
+                }
+            })
+            .collect();
+        let (u, v) = (320, 20);
+        let r = p.ray(u, v);
+        let ground_x = f64::from(o[0]) + r.x * f64::from(depth[v * 640 + u]) * 0.001;
+        assert!(ground_x > 3.5, "row 20 sees ground at {ground_x} m");
+        let mut grid = VoxelGrid::new(spec, 640 * 480);
+        let without = grid.bin(&p, &depth, 400, 4500, &MixedPixels::OFF);
+        let post_z = (2.97 - f64::from(o[0])) / r.x;
+        depth[v * 640 + u] = (post_z * 1000.0).round() as u16;
+        let with = grid.bin(&p, &depth, 400, 4500, &MixedPixels::OFF);
+        grid.emit();
+        let in_range = depth.iter().filter(|&&d| (400..=4500).contains(&d)).count();
+        assert_eq!(with.points_in as usize, in_range, "skipped rows count too");
+        assert_eq!(with.points_binned, without.points_binned + 1);
+        let h = f64::from(o[2]) + r.z * post_z;
+        assert!(
+            grid.voxels().iter().any(|p| p.count == 1
+                && (f64::from(p.x) - 2.97).abs() < 0.01
+                && (f64::from(p.z) - h).abs() < 0.01),
+            "the post's point at (2.97, {h})"
+        );
     }
 
     #[test]
