@@ -934,16 +934,11 @@ mod tests {
         assert!(g.cells().iter().all(|c| c.n == 0));
     }
 
-    #[test]
-    fn a_mixed_pixel_is_not_binned_and_the_surfaces_either_side_are() {
-        // Flat ground seen by the default camera, and one pixel on it moved half way
-        // to where the pixel beside it sees (as across an edge): with the filter the
-        // moved pixel alone is dropped; without, it is binned.
-        let c = Config::default();
-        let p = Projector::new(&c, 640, 480);
-        let spec = GridSpec::from_config(&c);
+    /// Flat ground at z = 0 as `p`'s camera sees it (640 × 480): each pixel's optical
+    /// depth in mm, capped at 4.5 m; 0 for rays at or above the horizon.
+    fn flat_ground_depth(p: &Projector) -> Vec<u16> {
         let o = p.origin();
-        let mut depth: Vec<u16> = (0..480)
+        (0..480)
             .flat_map(|v| (0..640).map(move |u| (u, v)))
             .map(|(u, v)| {
                 let r = p.ray(u, v);
@@ -953,7 +948,18 @@ mod tests {
                     0
                 }
             })
-            .collect();
+            .collect()
+    }
+
+    #[test]
+    fn a_mixed_pixel_is_not_binned_and_the_surfaces_either_side_are() {
+        // Flat ground seen by the default camera, and one pixel on it moved half way
+        // to where the pixel beside it sees (as across an edge): with the filter the
+        // moved pixel alone is dropped; without, it is binned.
+        let c = Config::default();
+        let p = Projector::new(&c, 640, 480);
+        let spec = GridSpec::from_config(&c);
+        let mut depth = flat_ground_depth(&p);
         // Columns 321.. are a far surface 0.6 m behind, pixel 320 is mixed between.
         let v = 400;
         for u in 321..640 {
@@ -983,17 +989,7 @@ mod tests {
         let p = Projector::new(&c, 640, 480);
         let spec = GridSpec::from_config(&c);
         let o = p.origin();
-        let mut depth: Vec<u16> = (0..480)
-            .flat_map(|v| (0..640).map(move |u| (u, v)))
-            .map(|(u, v)| {
-                let r = p.ray(u, v);
-                if r.z < -1e-6 {
-                    ((-f64::from(o[2]) / r.z) * 1000.0).round().min(4500.0) as u16
-                } else {
-                    0
-                }
-            })
-            .collect();
+        let mut depth = flat_ground_depth(&p);
         let (u, v) = (320, 20);
         let r = p.ray(u, v);
         let ground_x = f64::from(o[0]) + r.x * f64::from(depth[v * 640 + u]) * 0.001;
