@@ -349,9 +349,10 @@ fn ground_beyond(f: &Frame, surface: &[f32], iy: usize, from: usize) -> Option<f
 /// side (its toe ahead of the origin, or so little behind it that the rover's ground
 /// there is flat by the onset's measure: a descent met at 60° whose toe line passes
 /// just behind the rover under one track, `sweep -- oblique 100 5503` #98), with and
-/// without its first cell (which the image's bottom edge cuts: a step's top seen with the upper
-/// part of its face fits a gentle line back to the rover), it is a ramp with its toe
-/// below the image (the paper's Table 2 case 3, measured by the feature analysis).
+/// without its first cell (which the image's bottom edge cuts: a step's top seen with
+/// the upper part of its face fits a gentle line back to the rover), it is a ramp with
+/// its toe below the image (the paper's Table 2 case 3, measured by the feature
+/// analysis).
 /// Otherwise (a plateau, a step's top, ground below a fall, a boulder) the change is
 /// unseen: an `unknown` hazard at the nearest such ground, when two or more strips of
 /// a track show it (10 cm: narrower than a wheel; a boulder whose front is below the
@@ -1134,12 +1135,11 @@ const SLOPE_STRAIGHTNESS_M: f32 = 0.03;
 /// holds only what lies below the edge: a ramp rising out of view left in one such
 /// track cell a few centimetres of its side face, and that "track height" put the
 /// ramp's side in the belly band 40 cm above it (`sweep -- families 100 5501 random`
-/// #55 noisy). A belly cell beside a track is also
-/// measured against that track cell's upper surface: a face along the band edge is
-/// the side of what stands in the track. A belly cell off the band's edges that the
-/// image's top edge cuts, already more than a wheel radius above the tracks beside
-/// it (which are seen), is an obstacle whose top is not seen: unknown ground there,
-/// whatever its bound.
+/// #55 noisy). A belly cell beside a track is also measured against that track cell's
+/// upper surface: a face along the band edge is the side of what stands in the track.
+/// A belly cell off the band's edges that the image's top edge cuts, already more
+/// than a wheel radius above the tracks beside it (which are seen), is an obstacle
+/// whose top is not seen: unknown ground there, whatever its bound.
 pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdict: &mut Verdict) {
     let clearance = f.cfg.rover.belly_clearance_m as f32;
     let r = f.cfg.rover.wheel_radius_m as f32;

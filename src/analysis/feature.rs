@@ -243,7 +243,7 @@ fn weighted_plane(
     sel: &Selection,
     iteration: usize,
 ) -> Option<(Plane, f64)> {
-    let weight = |cell: &crate::grid::Cell| {
+    let weight = |cell: &Cell| {
         if iteration == 0 {
             1.0
         } else {
