@@ -77,14 +77,22 @@ fn main() {
             let c = spec.cell(ix, iy);
             let cell = p.grid().cells()[c];
             println!(
-                "ix {ix} x {:.3} n {} z {:.3} top {:.3} low {:.3} crest {:.3} foot {:.3} cut {}",
+                "ix {ix} x {:.3} y {:.3} n {} z {:.3} top {:.3} low {:.3} crest {:.3} foot {:.3} \
+                 crest at ({:.3}, {:.3}) foot at ({:.3}, {:.3}) top at ({:.3}, {:.3}) cut {}",
                 cell.x,
+                cell.y,
                 cell.n,
                 cell.z,
                 cell.top,
                 cell.low,
                 cell.crest,
                 cell.foot,
+                cell.crest_xy[0],
+                cell.crest_xy[1],
+                cell.foot_xy[0],
+                cell.foot_xy[1],
+                cell.top_xy[0],
+                cell.top_xy[1],
                 p.grid().cut()[c]
             );
         }
