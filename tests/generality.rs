@@ -153,6 +153,33 @@ fn a_trench_wall_in_a_cell_the_view_ends_in_makes_no_step_but_a_block_there_does
 }
 
 #[test]
+fn a_trench_wall_whose_points_noise_scatters_still_runs_on_into_the_cut_cells() {
+    // An 8.7° descent under the right track, capped 25 cm down past the corridor, seen
+    // by a Kinect v1 0.87 m high pitched 42° (`sweep -- families 100 5606 random` #3,
+    // noisy). In the outermost strip the trench's outer wall stands 16 cm over the
+    // floor; noise scatters its points over so many voxel layers that in the last
+    // cells seen whole they are too few for a surface of their own, only a top on the
+    // strip's side. The cells the image's top edge cuts past them hold the same
+    // wall's top: read as a bound on the floor there, a 16 cm step.
+    let mut c = mounted([0.0765, -0.0951, 0.8658], [1.6411, 42.0793, 4.2712]);
+    c.camera.min_range_m = 0.4128;
+    let (toe, g) = (1.1941, -8.6826);
+    let trench = || vec![Element::ramp(toe, -0.45, g, 0.0, RIGHT_TRACK).capped(Some(0.2452))];
+    let [clean, v] = analyse_views(trench(), &c, [None, Some(5_606_003)]);
+    assert_go(&clean, 10, toe, g, None);
+    assert_go(&v, 10, toe, g, None);
+    // A post on the floor against the wall there, its top over the wall's: not the
+    // wall running on, and a rise the bound proves.
+    for x in [2.42, 2.47] {
+        let mut scene = trench();
+        scene.push(block_at(x, -0.68, 0.04, 0.03, 0.4));
+        for v in analyse_views(scene, &c, [None, Some(5_606_003)]) {
+            assert_ne!(v.decision, Decision::Go, "post at {x}: {:?}", v.feature);
+        }
+    }
+}
+
+#[test]
 fn a_trench_wall_the_view_ends_along_is_no_step_but_a_post_where_it_ends_is() {
     // A 14.3° descent under the right track, capped 24 cm down past the corridor, seen
     // by a Kinect v1 0.84 m high rolled -7° and pitched 43° (`sweep -- families 100

@@ -112,6 +112,9 @@ pub fn steps_and_slopes(
                         Some([cell.x, cell.top, cell.top_xy[1]])
                     }
                     (None, Some([_, top, top_y])) if fringe => Some([cell.x, top, top_y]),
+                    (None, _) if !past && fringe_of_wall(cell, z, f.spec.y_centre(iy), r, vs) => {
+                        Some([cell.x, cell.top, cell.top_xy[1]])
+                    }
                     _ => None,
                 };
                 last = [last[1], Some((cell.x, z))];
@@ -154,6 +157,22 @@ fn wall_goes_on(cell: &Cell, wall: Option<[f32; 3]>, y_mid: f32, vs: f32) -> boo
                 && cell.top <= top + HIDDEN_TOP_MARGIN_M
                 && (cell.top_xy[1] - top_y).abs() <= side
         })
+}
+
+/// Whether a cell seen whole holds the fringe of a face along its strip standing more
+/// than a wheel radius `r` above its ground `z`: one surface (the face's points are
+/// under [`crate::grid::SURFACE_MIN_SHARE`] of the cell's, `crest` is `foot`), and a
+/// top over `z` by more than `r` whose voxel hugs the strip's side
+/// ([`FACE_OFF_VOXELS`] off its centre line `y_mid`). Depth noise scatters a trench
+/// wall's points on the corridor's edge over more voxel layers, so that in some of its
+/// cells they no longer make a band of their own; the wall is still there, and the
+/// cells the image's top edge cuts past it hold its fringe ([`wall_goes_on`]): without
+/// it, their tops read as a rise of the floor (`sweep -- families 100 5606 random` #3,
+/// noisy: a 16 cm `step` 2.35 m out).
+fn fringe_of_wall(cell: &Cell, z: f32, y_mid: f32, r: f32, vs: f32) -> bool {
+    cell.crest == cell.foot
+        && cell.top - z > r
+        && (cell.top_xy[1] - y_mid).abs() >= FACE_OFF_VOXELS * vs
 }
 
 /// How far past the last cell that showed a face along the strip (or its fringe)
@@ -1853,6 +1872,25 @@ mod tests {
         // Both bands spread across the cell: no side to hug.
         let c = cell(0.10, [1.025, 0.682], 0.0, [1.025, 0.672]);
         assert_eq!(ground_beside_face(&c, MID, VS), None);
+    }
+
+    #[test]
+    fn a_seen_cell_shows_a_wall_by_its_top_alone_only_at_the_strips_side() {
+        // One surface, the floor 22 cm under the belly's level; the wall's points too
+        // few for a band of their own, its top voxel at the strip's side.
+        let floor = |top: f32, top_y: f32| Cell {
+            top,
+            top_xy: [1.025, top_y],
+            ..cell(-0.22, [1.025, 0.675], -0.22, [1.025, 0.675])
+        };
+        let r = 0.11;
+        assert!(fringe_of_wall(&floor(0.0, 0.698), -0.22, MID, r, VS));
+        // A top a wheel radius or less over the floor, or on the strip's centre line.
+        assert!(!fringe_of_wall(&floor(-0.12, 0.698), -0.22, MID, r, VS));
+        assert!(!fringe_of_wall(&floor(0.0, 0.68), -0.22, MID, r, VS));
+        // Two surfaces: the wall is one of its own, judged by ground_beside_face.
+        let two = cell(-0.05, [1.025, 0.698], -0.20, [1.025, 0.680]);
+        assert!(!fringe_of_wall(&two, -0.20, MID, r, VS));
     }
 
     #[test]
