@@ -354,6 +354,36 @@ fn bench_prints_one_json_line_with_every_stage() {
 }
 
 #[test]
+fn a_closed_stdout_is_an_error_not_a_panic() {
+    // A pipe whose reader is gone (`rover-terrain bench … | head -c0` once head has
+    // exited): each command that prints reports the failed write and exits 1.
+    let bench_input = fixture("scenes/flat.png");
+    let commands: [&[&str]; 4] = [
+        &["bench", "--iterations", "2", &bench_input],
+        &["check-config", "config/rover-terrain.toml"],
+        &["cameras"],
+        &["analyze", &bench_input],
+    ];
+    for args in commands {
+        let (reader, writer) = std::io::pipe().expect("a pipe");
+        drop(reader);
+        let o = bin()
+            .args(args)
+            .stdout(writer)
+            .stderr(std::process::Stdio::piped())
+            .output()
+            .expect("binary runs");
+        no_panic(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("writing to stdout"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+    }
+}
+
+#[test]
 fn validate_writes_the_report() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("v.md");

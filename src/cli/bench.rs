@@ -49,6 +49,6 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
             rover_terrain::bench::run(&mut pipeline, &frame, args.iterations)?.to_string()
         }
     };
-    println!("{line}");
+    super::print_stdout(&format!("{line}\n"))?;
     Ok(ExitCode::SUCCESS)
 }

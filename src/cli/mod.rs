@@ -128,11 +128,11 @@ fn dispatch(
         ),
         Command::CheckConfig { file } => {
             let config = Config::load(&file)?;
-            print!(
+            print_stdout(&format!(
                 "# {}: valid; the effective configuration\n{}",
                 file.display(),
                 toml::to_string(&config).context("printing the config")?
-            );
+            ))?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Analyze(args) => analyze::run(args),
@@ -145,7 +145,7 @@ fn dispatch(
         Command::Inspect(args) => inspect::run(args),
         Command::Cameras => {
             for line in rover_terrain_drivers::list_cameras() {
-                println!("{line}");
+                print_stdout(&format!("{line}\n"))?;
             }
             Ok(ExitCode::SUCCESS)
         }
@@ -181,4 +181,14 @@ fn exit_code(failed: bool) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// Write `text` to stdout and flush it: an error (a closed pipe, a full disk) is an
+/// error the caller reports, not a panic as `print!` would make it.
+pub(crate) fn print_stdout(text: &str) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .context("writing to stdout")
 }
