@@ -77,6 +77,7 @@ fn main() {
         } else {
             sim::render(&terrain, &config)
         };
+        let unseen = unseen_at_grazing(mode, &want, &terrain, &config);
         for noisy in [false, true] {
             let mut f = frame.clone();
             if noisy {
@@ -95,19 +96,6 @@ fn main() {
                 }
             }
             let v = pipeline.process(&f).expect("frame fits");
-            // A climbable surface the camera meets at grazing incidence somewhere in
-            // the tracks (a descent as steep as the line of sight to it) is not seen
-            // there: any verdict passes, and go is the analysis' inference. In
-            // `families` and `natural`, for a scene due go, judged on its planes alone
-            // (the far flanks of rough ground's bumps and of stones face away from the
-            // camera too, and excuse nothing).
-            let unseen = match mode {
-                "oblique" => grazing(&terrain, &config),
-                "families" | "natural" if want.verdict == Decision::Go => {
-                    grazing(&planes_of(&terrain), &config)
-                }
-                _ => false,
-            };
             if unseen {
                 excused.0 += 1;
                 excused.1 += usize::from(v.decision != Decision::Go);
@@ -138,13 +126,7 @@ fn main() {
             if !fails.is_empty() {
                 failures += 1;
                 if let Ok(dir) = std::env::var("DUMP") {
-                    let dir = std::path::Path::new(&dir);
-                    std::fs::create_dir_all(dir).expect("DUMP is a writable directory");
-                    let json =
-                        serde_json::to_string(&terrain.elements).expect("terrain serialises");
-                    std::fs::write(dir.join(format!("{i}.json")), json).expect("DUMP writable");
-                    let toml = toml::to_string(&config).expect("configuration serialises");
-                    std::fs::write(dir.join(format!("{i}.toml")), toml).expect("DUMP writable");
+                    dump(std::path::Path::new(&dir), i, &terrain, &config);
                 }
                 println!(
                     "FAIL #{i} noisy={noisy} {:?} mount={:?} cam={}x{}: {fails:?} hazards={:?} feature={:?}",
@@ -166,6 +148,32 @@ fn main() {
             excused.0, excused.1
         );
     }
+}
+
+/// Whether scene `terrain` of `mode`, expected `want` on `config`'s rig, is excused: a
+/// climbable surface the camera meets at grazing incidence somewhere in the tracks (a
+/// descent as steep as the line of sight to it) is not seen there, so any verdict
+/// passes, and go is the analysis' inference. In `families` and `natural`, for a scene
+/// due go, judged on its planes alone (the far flanks of rough ground's bumps and of
+/// stones face away from the camera too, and excuse nothing).
+fn unseen_at_grazing(mode: &str, want: &Expectation, terrain: &Terrain, config: &Config) -> bool {
+    match mode {
+        "oblique" => grazing(terrain, config),
+        "families" | "natural" if want.verdict == Decision::Go => {
+            grazing(&planes_of(terrain), config)
+        }
+        _ => false,
+    }
+}
+
+/// Write scene `i`'s terrain (`i.json`, for `cells`) and configuration (`i.toml`)
+/// into `dir`.
+fn dump(dir: &std::path::Path, i: usize, terrain: &Terrain, config: &Config) {
+    std::fs::create_dir_all(dir).expect("DUMP is a writable directory");
+    let json = serde_json::to_string(&terrain.elements).expect("terrain serialises");
+    std::fs::write(dir.join(format!("{i}.json")), json).expect("DUMP writable");
+    let toml = toml::to_string(&config).expect("configuration serialises");
+    std::fs::write(dir.join(format!("{i}.toml")), toml).expect("DUMP writable");
 }
 
 /// Whether the camera meets `terrain`'s surface under the tracks somewhere at under
