@@ -177,6 +177,27 @@ fn a_trench_wall_whose_points_noise_scatters_still_runs_on_into_the_cut_cells() 
             assert_ne!(v.decision, Decision::Go, "post at {x}: {:?}", v.feature);
         }
     }
+    // An 8.2° descent under the right track, capped 22 cm down, seen by a 320×240
+    // camera 0.97 m high rolled -7.4° and pitched 43° (`sweep -- families 100 5701
+    // random` #47, noisy). In the first cell the image's top edge cuts, the wall's
+    // fringe makes a band of its own, but the floor's few points there centre too
+    // near the wall to be told apart from it: an 18 cm `step` 2.80 m out.
+    let mut c = mounted([0.1378, -0.0078, 0.9721], [-7.4202, 43.3113, -1.2377]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.3066;
+    let (toe, g) = (1.1142, -8.1575);
+    let trench = || vec![Element::ramp(toe, -0.45, g, 0.0, RIGHT_TRACK).capped(Some(0.2227))];
+    for v in analyse_views(trench(), &c, [None, Some(5_701_047)]) {
+        assert_go(&v, 10, toe, g, None);
+    }
+    // A post against the wall there, its top over the wall's, still stops.
+    for x in [2.82, 2.87] {
+        let mut scene = trench();
+        scene.push(block_at(x, -0.68, 0.04, 0.03, 0.4));
+        for v in analyse_views(scene, &c, [None, Some(5_701_047)]) {
+            assert_ne!(v.decision, Decision::Go, "post at {x}: {:?}", v.feature);
+        }
+    }
 }
 
 #[test]

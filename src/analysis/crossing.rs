@@ -137,11 +137,15 @@ pub fn steps_and_slopes(
 /// that the strip's last seen cell showed (`wall`: that cell's x, top and top's y,
 /// metres, when its ground lay more than a wheel radius below its top; x moved on to
 /// each cut cell after it holding only that fringe). The cell's upper band is under
-/// [`crate::grid::SURFACE_MIN_SHARE`] of its points (`crest` is `foot`); it lies
-/// within [`WALL_REACH_M`] of that x; its top stands no higher
-/// than the face's did (within rough ground's spread, [`HIDDEN_TOP_MARGIN_M`]); and
-/// its top voxel hugs the strip's side ([`FACE_OFF_VOXELS`] off its centre line
-/// `y_mid`) on the face's line (within that much of the face's top). Its top is then
+/// [`crate::grid::SURFACE_MIN_SHARE`] of its points (`crest` is `foot`), or centres
+/// on the face's line too (the fringe is a surface of its own, but the floor's few
+/// points, drawn toward the wall by noise, centre too close to it for
+/// [`ground_beside_face`] to tell the two apart: `sweep -- families 100 5701 random`
+/// #47, noisy, an 18 cm `step` 2.80 m out); it lies within [`WALL_REACH_M`] of that
+/// x; its top stands no higher than the face's did (within rough ground's spread,
+/// [`HIDDEN_TOP_MARGIN_M`]); and its top voxel hugs the strip's side
+/// ([`FACE_OFF_VOXELS`] off its centre line `y_mid`) on the face's line (within that
+/// much of the face's top). Its top is then
 /// the wall's, not a bound on the strip's ground: a trench's wall along the
 /// corridor's edge, its top level with the ground beside the trench, ran on into the
 /// cells the image's top edge cuts and made the floor "rise" to it (`sweep --
@@ -150,12 +154,13 @@ pub fn steps_and_slopes(
 /// standing in the strip), or a surface across the cell.
 fn wall_goes_on(cell: &Cell, wall: Option<[f32; 3]>, y_mid: f32, vs: f32) -> bool {
     let side = FACE_OFF_VOXELS * vs;
-    cell.crest == cell.foot
-        && (cell.top_xy[1] - y_mid).abs() >= side
+    (cell.top_xy[1] - y_mid).abs() >= side
         && wall.is_some_and(|[x, top, top_y]| {
-            cell.x - x <= WALL_REACH_M
+            let on_line = |y: f32| (y - top_y).abs() <= side;
+            (cell.crest == cell.foot || on_line(cell.crest_xy[1]))
+                && cell.x - x <= WALL_REACH_M
                 && cell.top <= top + HIDDEN_TOP_MARGIN_M
-                && (cell.top_xy[1] - top_y).abs() <= side
+                && on_line(cell.top_xy[1])
         })
 }
 
@@ -1927,5 +1932,16 @@ mod tests {
             ..cell(-0.05, [1.045, 0.675], -0.22, [1.010, 0.675])
         };
         assert!(!wall_goes_on(&surface, wall, MID, VS));
+        // An upper band on the wall's line is the wall's fringe, over the floor, even
+        // where the floor's points centre too near the wall for the two to be told
+        // apart as a face and the ground beside it.
+        let fringe = |crest_y: f32| Cell {
+            top: -0.03,
+            top_xy: [1.025, 0.697],
+            ..cell(-0.05, [1.020, crest_y], -0.20, [1.023, 0.688])
+        };
+        assert_eq!(ground_beside_face(&fringe(0.697), MID, VS), None);
+        assert!(wall_goes_on(&fringe(0.697), wall, MID, VS));
+        assert!(!wall_goes_on(&fringe(0.680), wall, MID, VS));
     }
 }
