@@ -943,9 +943,16 @@ fn strip_hazards(
             }
             if dx > 0.0 && dz.abs() >= tan_max * dx {
                 let kind = if dx <= 3.5 * vs {
-                    let rough_ramp = line_windows(strip, i, j, wheelbase.min(STEP_WINDOW_MAX_M))
-                        .any(|k| k < tan_max);
-                    (!rough_ramp).then_some((HazardKind::Step, 0.5 * (xi + xj)))
+                    // A window on one line under the limit: a rough ramp's bumps. Every
+                    // window on one line over it: a ramp too steep, not a step (which
+                    // leaves no window on one line).
+                    let line = line_windows(strip, i, j, wheelbase.min(STEP_WINDOW_MAX_M))
+                        .reduce(f32::min);
+                    match line {
+                        Some(k) if k < tan_max => None,
+                        Some(_) => Some((HazardKind::Slope, xi)),
+                        None => Some((HazardKind::Step, 0.5 * (xi + xj))),
+                    }
                 } else if sustained(&strip[i..=j]) && climb_slope(strip, i, j, wheelbase) >= tan_max
                 {
                     Some((HazardKind::Slope, xi))
@@ -1732,9 +1739,9 @@ mod tests {
             .collect()
     }
 
-    /// The slope hazards `strip_hazards` reports on a strip at heights `z(x)`, x from
-    /// 1.0 m in 5 cm cells (wheel radius 0.11 m, limit 30°, wheelbase 0.6 m).
-    fn slopes(z: impl Fn(f32) -> f32) -> Vec<Hazard> {
+    /// The hazards `strip_hazards` reports on a strip at heights `z(x)`, x from 1.0 m
+    /// in 5 cm cells (wheel radius 0.11 m, limit 30°, wheelbase 0.6 m).
+    fn hazards_on(z: impl Fn(f32) -> f32) -> Vec<Hazard> {
         let mut run = strip(&(0..30).map(|i| z(0.05 * i as f32)).collect::<Vec<_>>());
         wheel_heights(&mut run, 0.11);
         let mut v = Verdict::default();
@@ -1745,11 +1752,14 @@ mod tests {
             VS,
             &mut v,
         );
-        v.hazards
-            .iter()
-            .copied()
-            .filter(|h| h.kind == HazardKind::Slope)
-            .collect()
+        v.hazards.to_vec()
+    }
+
+    /// The slope hazards of [`hazards_on`].
+    fn slopes(z: impl Fn(f32) -> f32) -> Vec<Hazard> {
+        let mut h = hazards_on(z);
+        h.retain(|h| h.kind == HazardKind::Slope);
+        h
     }
 
     /// The hazards `strip_hazards` reports on flat ground at z = 0 from 1.0 m that
@@ -1831,6 +1841,40 @@ mod tests {
         // bank and the flat are not one line.
         let k = 34f32.to_radians().tan();
         assert!(!slopes(|x| k * x.clamp(0.3, 0.75)).is_empty());
+    }
+
+    #[test]
+    fn a_ramp_too_steep_that_rises_a_wheel_radius_within_a_few_cells_is_a_slope_not_a_step() {
+        // From its toe 1.5 m out, a ramp of 37-50° rises a wheel radius within three
+        // cells, as a step does; but the ground past its toe lies on one line.
+        for deg in [37f32, 40.0, 50.0] {
+            let k = deg.to_radians().tan();
+            for bumps in [0.0, 1.0] {
+                let h = hazards_on(|x| k * (x - 0.5).max(0.0) + bumps * rough(x));
+                let first = h
+                    .iter()
+                    .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m))
+                    .expect("a ramp over the limit stops");
+                assert_eq!(
+                    first.kind,
+                    HazardKind::Slope,
+                    "{deg}° (bumps {bumps}): {h:?}"
+                );
+                // Where the wheel first touches it: up to a wheel radius before.
+                assert!((1.39..=1.55).contains(&first.distance_m), "{deg}°: {h:?}");
+            }
+        }
+        // Steps of 15-30 cm (on rough ground too), and a 45° bank 15 cm high with the
+        // flat above it, are steps.
+        for z in [
+            |x: f32| if x > 0.5 { 0.15 } else { 0.0 },
+            |x: f32| if x > 0.5 { 0.3 } else { 0.0 },
+            |x: f32| if x > 0.5 { 0.2 + rough(x) } else { rough(x) },
+            |x: f32| (x - 0.5).clamp(0.0, 0.15),
+        ] {
+            let h = hazards_on(z);
+            assert_eq!(h.first().map(|h| h.kind), Some(HazardKind::Step), "{h:?}");
+        }
     }
 
     #[test]
