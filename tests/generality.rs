@@ -740,6 +740,42 @@ fn a_boulder_whose_foot_is_below_the_image_is_never_go() {
 }
 
 #[test]
+fn a_stone_on_a_ramp_whose_foot_the_view_starts_on_is_judged_from_the_ramp() {
+    // A 12.7° ramp across the corridor from 0.874 m, seen by a Kinect v2 0.69 m high
+    // pitched 17° from 0.94 m, 1.5 cm up the ramp; a 5 cm stone on it at 1.24 m
+    // (`sweep -- natural 100 5707 random` #43). Over the strips' first 0.3 m the stone
+    // lifts them 14 cm above the rover's ground and off one line: read as a change
+    // hidden below the image, `unknown`. Their first cells lie on the ramp, from its
+    // foot: the stone is seen whole from there.
+    let mut c = kinect_v2(mounted(
+        [0.2828, 0.0877, 0.6904],
+        [1.5182, 17.0084, -0.8574],
+    ));
+    c.camera.min_range_m = 0.3452;
+    let (toe, g) = (0.8743, 12.7294);
+    let on_ramp = |height_m| {
+        vec![
+            Element::ramp(toe, 0.0, g, 0.0, Extent::Full),
+            Element::Stone {
+                x_m: 1.2422,
+                y_m: 0.4323,
+                radius_m: 0.0792,
+                height_m,
+                shape: StoneShape::Boulder,
+            },
+        ]
+    };
+    for v in analyse_views(on_ramp(0.0528), &c, [None, Some(5_707_043)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert_eq!(v.feature.expect("a go has a feature").workcase, 2);
+    }
+    // A stone there a wheel radius and more above the ramp is still a stop.
+    for v in analyse_views(on_ramp(0.16), &c, [None, Some(5_707_043)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
+    }
+}
+
+#[test]
 fn a_descent_met_at_grazing_incidence_is_measured_as_a_slope() {
     // `near_edge -- 300 5304 rough` #158: the default rig over a 20° descent across
     // the corridor from 1.93 m. Its rays meet the slope at under 2°, so it is seen one

@@ -377,6 +377,12 @@ fn ground_beyond(f: &Frame, surface: &[f32], iy: usize, from: usize) -> Option<f
 /// the upper part of its face fits a gentle line back to the rover), it is a ramp with
 /// its toe below the image (the paper's Table 2 case 3, measured by the feature
 /// analysis).
+/// So is a strip seen from a passable ramp's foot: its first cell within
+/// `rise_threshold_m` of z = 0, and its first [`BLIND_FOOT_M`] on one line meeting
+/// z = 0 ahead in the same way (with and without that cell). What stands on the ramp
+/// after it is seen whole, and the step and slope test judges it (a 5 cm stone 0.37 m
+/// up a 12.7° ramp, whose foot a Kinect v2 saw from 1.5 cm up, lifted the first
+/// 0.3 m off one line and 14 cm high: `sweep -- natural 100 5707 random` #43).
 /// Otherwise (a plateau, a step's top, ground below a fall, a boulder) the change is
 /// unseen: an `unknown` hazard at the nearest such ground, when two or more strips of
 /// a track show it (10 cm: narrower than a wheel; a boulder whose front is below the
@@ -431,6 +437,20 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 }
             }
             let from_ground = near().take(at).any(|(_, z)| z.abs() <= HIDDEN_TOP_MARGIN_M);
+            // Or seen from a passable ramp's foot: its first cell within the rise
+            // threshold of the rover's ground, and its first BLIND_FOOT_M on one line
+            // whose toe is ahead (with and without that cell). What stands on the ramp
+            // past them is seen whole.
+            let foot = || near().take_while(|(x, _)| *x <= x0 + BLIND_FOOT_M);
+            let foot_fit = |skip: usize| {
+                line_fit(foot().skip(skip)).map(|(p, rms)| {
+                    let (k, z0) = (p.a as f32, p.z(f64::from(x0), 0.0) as f32);
+                    (k, z0, rms as f32 <= ROUGH_LINE_RMS_M)
+                })
+            };
+            let from_foot = near().next().is_some_and(|(_, z)| z.abs() <= rise)
+                && foot_fit(0).is_some_and(toe_ahead)
+                && foot_fit(1).is_some_and(toe_ahead);
             // The first cell is the one the image's bottom edge cuts: it may hold
             // only part of a face (the top of a step whose foot is not seen), so the
             // ground from the next cell on must tell the same story. Ground that
@@ -442,7 +462,7 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .fold((0.0f32, 0.0f32), |(s, n), (_, z)| (s + z, n + 1.0));
             let rest = fit(1);
             let level_over = rest.is_some_and(|(_, _, straight)| straight) && (sum / n).abs() > r;
-            if (reach.abs() <= r + HIDDEN_TOP_MARGIN_M && !level_over) || from_ground {
+            if (reach.abs() <= r + HIDDEN_TOP_MARGIN_M && !level_over) || from_ground || from_foot {
                 continue;
             }
             let ramp = fit(0).is_some_and(toe_ahead) && rest.is_none_or(toe_ahead);
@@ -725,6 +745,10 @@ fn broad(steep: usize, inner: usize) -> bool {
 /// How much of a track strip's nearest seen ground [`blind_rise`] fits its slope to,
 /// metres.
 const BLIND_FIT_M: f32 = 0.3;
+
+/// How much of a track strip's nearest seen ground [`blind_rise`] takes for a
+/// ramp's foot, metres: three or four cells.
+const BLIND_FOOT_M: f32 = 0.15;
 
 /// How far beside and beyond a climb leaving the view [`hidden_tops`] looks for the
 /// ground it stands on, metres: a boulder's radius.
