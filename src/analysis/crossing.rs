@@ -409,10 +409,12 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     .map_while(ground)
                     .take_while(|(x, _)| *x <= x0 + BLIND_FIT_M)
             };
-            // The line through the stretch from its `skip`th cell: slope, height at
-            // x0, and whether it holds within rough ground's spread.
-            let fit = |skip: usize| {
-                line_fit(near().skip(skip)).map(|(p, rms)| {
+            // The line through the stretch's first `len` metres from its `skip`th
+            // cell: slope, height at x0, and whether it holds within rough ground's
+            // spread.
+            let fit = |len: f32, skip: usize| {
+                let points = near().take_while(move |(x, _)| *x <= x0 + len);
+                line_fit(points.skip(skip)).map(|(p, rms)| {
                     let (k, z0) = (p.a as f32, p.z(f64::from(x0), 0.0) as f32);
                     (k, z0, rms as f32 <= ROUGH_LINE_RMS_M)
                 })
@@ -441,16 +443,9 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             // threshold of the rover's ground, and its first BLIND_FOOT_M on one line
             // whose toe is ahead (with and without that cell). What stands on the ramp
             // past them is seen whole.
-            let foot = || near().take_while(|(x, _)| *x <= x0 + BLIND_FOOT_M);
-            let foot_fit = |skip: usize| {
-                line_fit(foot().skip(skip)).map(|(p, rms)| {
-                    let (k, z0) = (p.a as f32, p.z(f64::from(x0), 0.0) as f32);
-                    (k, z0, rms as f32 <= ROUGH_LINE_RMS_M)
-                })
-            };
             let from_foot = near().next().is_some_and(|(_, z)| z.abs() <= rise)
-                && foot_fit(0).is_some_and(toe_ahead)
-                && foot_fit(1).is_some_and(toe_ahead);
+                && fit(BLIND_FOOT_M, 0).is_some_and(toe_ahead)
+                && fit(BLIND_FOOT_M, 1).is_some_and(toe_ahead);
             // The first cell is the one the image's bottom edge cuts: it may hold
             // only part of a face (the top of a step whose foot is not seen), so the
             // ground from the next cell on must tell the same story. Ground that
@@ -460,12 +455,12 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             let (sum, n) = near()
                 .skip(1)
                 .fold((0.0f32, 0.0f32), |(s, n), (_, z)| (s + z, n + 1.0));
-            let rest = fit(1);
+            let rest = fit(BLIND_FIT_M, 1);
             let level_over = rest.is_some_and(|(_, _, straight)| straight) && (sum / n).abs() > r;
             if (reach.abs() <= r + HIDDEN_TOP_MARGIN_M && !level_over) || from_ground || from_foot {
                 continue;
             }
-            let ramp = fit(0).is_some_and(toe_ahead) && rest.is_none_or(toe_ahead);
+            let ramp = fit(BLIND_FIT_M, 0).is_some_and(toe_ahead) && rest.is_none_or(toe_ahead);
             if !ramp {
                 hidden += 1;
                 nearest = nearest.min(x0);
