@@ -19,8 +19,8 @@
 //! same way, its incidence taken on its planes alone (no rough ground, no stones).
 //! `ONLY=3,7` checks
 //! just those scenes of the sweep. The last line counts the failures and, of them,
-//! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain
-//! (`N.json`, for `cells`) and configuration (`N.toml`, for `cells`' `CONFIG` and
+//! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain (with
+//! `ALL=1`, every scene's) (`N.json`, for `cells`) and configuration (`N.toml`, for `cells`' `CONFIG` and
 //! `rover-terrain inspect --config`) there. `FLYING=FRACTION` also mixes that fraction
 //! of the noisy frames' depth-edge pixels (`sim::FlyingPixels`, as time-of-flight
 //! cameras give). `EXACT=1` draws each frame with the second renderer of
@@ -123,11 +123,11 @@ fn main() {
             if v.decision == Decision::Go && want.verdict != Decision::Go {
                 false_go += 1;
             }
+            if let (Ok(dir), true) = (std::env::var("DUMP"), all || !fails.is_empty()) {
+                dump(std::path::Path::new(&dir), i, &terrain, &config);
+            }
             if !fails.is_empty() {
                 failures += 1;
-                if let Ok(dir) = std::env::var("DUMP") {
-                    dump(std::path::Path::new(&dir), i, &terrain, &config);
-                }
                 println!(
                     "FAIL #{i} noisy={noisy} {:?} mount={:?} cam={}x{}: {fails:?} hazards={:?} feature={:?}",
                     terrain.elements, config.mount, config.camera.width, config.camera.height, v.hazards, v.feature
