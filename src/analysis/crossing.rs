@@ -1870,10 +1870,7 @@ mod tests {
             let k = deg.to_radians().tan();
             for bumps in [0.0, 1.0] {
                 let h = hazards_on(|x| k * (x - 0.5).max(0.0) + bumps * rough(x));
-                let first = h
-                    .iter()
-                    .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m))
-                    .expect("a ramp over the limit stops");
+                let first = nearest(&h).expect("a ramp over the limit stops");
                 assert_eq!(
                     first.kind,
                     HazardKind::Slope,
@@ -1892,8 +1889,15 @@ mod tests {
             |x: f32| (x - 0.5).clamp(0.0, 0.15),
         ] {
             let h = hazards_on(z);
-            assert_eq!(h.first().map(|h| h.kind), Some(HazardKind::Step), "{h:?}");
+            assert_eq!(nearest(&h).map(|h| h.kind), Some(HazardKind::Step), "{h:?}");
         }
+    }
+
+    /// The nearest of `hazards` (the one that decides the verdict).
+    fn nearest(hazards: &[Hazard]) -> Option<&Hazard> {
+        hazards
+            .iter()
+            .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m))
     }
 
     #[test]
