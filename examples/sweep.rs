@@ -19,9 +19,9 @@
 //! same way, its incidence taken on its planes alone (no rough ground, no stones).
 //! `ONLY=3,7` checks
 //! just those scenes of the sweep. The last line counts the failures and, of them,
-//! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain (with
-//! `ALL=1`, every scene's) (`N.json`, for `cells`) and configuration (`N.toml`, for `cells`' `CONFIG` and
-//! `rover-terrain inspect --config`) there. `FLYING=FRACTION` also mixes that fraction
+//! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain
+//! (`N.json`, for `cells`) and configuration (`N.toml`, for `cells`' `CONFIG` and
+//! `rover-terrain inspect --config`) there; with `ALL=1`, every scene's. `FLYING=FRACTION` also mixes that fraction
 //! of the noisy frames' depth-edge pixels (`sim::FlyingPixels`, as time-of-flight
 //! cameras give). `EXACT=1` draws each frame with the second renderer of
 //! `tests/common/second_renderer.rs` (its own rays, exact planes and faces) instead of
