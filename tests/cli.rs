@@ -358,11 +358,14 @@ fn a_closed_stdout_is_an_error_not_a_panic() {
     // A pipe whose reader is gone (`rover-terrain bench … | head -c0` once head has
     // exited): each command that prints reports the failed write and exits 1.
     let bench_input = fixture("scenes/flat.png");
-    let commands: [&[&str]; 4] = [
+    let pictures = tempfile::tempdir().unwrap();
+    let pictures = pictures.path().to_str().expect("a UTF-8 temporary path");
+    let commands: [&[&str]; 5] = [
         &["bench", "--iterations", "2", &bench_input],
         &["check-config", "config/rover-terrain.toml"],
         &["cameras"],
         &["analyze", &bench_input],
+        &["inspect", &bench_input, "--out", pictures],
     ];
     for args in commands {
         let (reader, writer) = std::io::pipe().expect("a pipe");

@@ -1,9 +1,7 @@
 //! `inspect`: pictures of analysed frames for people.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use std::process::ExitCode;
 
 use rover_terrain::Config;
@@ -98,17 +96,13 @@ fn write_sets(
             .map(|p| p.display().to_string())
             .collect();
         // A closed stdout (`| head`) ends the run with an error, not a panic.
-        writeln!(
-            std::io::stdout().lock(),
-            "{}",
-            serde_json::json!({
-                "frame": a.frame.seq,
-                "verdict": a.verdict.decision,
-                "dir": dir.display().to_string(),
-                "files": files,
-            })
-        )
-        .context("writing to stdout")?;
+        let line = serde_json::json!({
+            "frame": a.frame.seq,
+            "verdict": a.verdict.decision,
+            "dir": dir.display().to_string(),
+            "files": files,
+        });
+        super::print_stdout(&format!("{line}\n"))?;
         written += 1;
         Ok(())
     })?;
