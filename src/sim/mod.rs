@@ -114,6 +114,11 @@ fn cast(terrain: &HeightField, pose: Pose, projector: &Projector, u: usize, v: u
             t0 = t;
             let mut t_hit = next;
             for _ in 0..40 {
+                // The hit lies in (t0, t_hit] and rounding is monotonic: once both ends
+                // round to the same millimetre, so does every later bisection.
+                if to_mm(t0) == to_mm(t_hit) {
+                    break;
+                }
                 let mid = 0.5 * (t0 + t_hit);
                 if above(mid) <= 0.0 {
                     t_hit = mid;
