@@ -1766,6 +1766,33 @@ fn a_descending_tracks_wall_top_in_its_edge_strip_makes_no_step_but_a_block_ther
 }
 
 #[test]
+fn a_tall_side_face_in_the_first_cut_cell_is_no_floor_that_rises() {
+    // An 18.7° descent under the left track only, met at 22°, seen by a Kinect v1
+    // 0.98 m high pitched 42.6°: 2.6 m out, the track's outer side face stands 43 cm
+    // over its floor, and in the first cell the image's top edge cuts, its points
+    // spread over so many voxel layers that neither band held a surface. The cell's
+    // mean, the face's middle, stood for the floor: a rise of 15 cm into a cut cell,
+    // a `step` (`sweep -- oblique 100 5903` #57, clean and noisy).
+    let mut c = mounted(
+        [0.234_593_4, 0.060_535_9, 0.977_807_6],
+        [-5.084_228_7, 42.581_833_3, -0.697_280_8],
+    );
+    c.camera.min_range_m = 0.375_554;
+    let descent = Element::ramp(1.333_353, 0.45, -18.681_880, 21.873_450, LEFT_TRACK);
+    for v in analyse_views(vec![descent.clone()], &c, [None, Some(5_903_057)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    }
+    // A block on that floor against the face, up to the ground beside it or above,
+    // is still an obstacle.
+    for (x_m, height_m) in [(2.45, 0.45), (2.6, 0.6)] {
+        let block = block_at(x_m, 0.55, 0.2, 0.25, height_m);
+        for v in analyse_views(vec![descent.clone(), block], &c, [None, Some(5_903_057)]) {
+            assert_ne!(v.decision, Decision::Go, "{height_m} m at {x_m} m");
+        }
+    }
+}
+
+#[test]
 fn a_face_met_side_on_reports_where_its_toe_line_meets_the_tracks() {
     // A side slope: the toe line runs (almost) along the direction of travel, so it
     // meets the reference line far behind the rover, or never (it was reported as

@@ -86,7 +86,7 @@ pub fn steps_and_slopes(
                     z
                 } else if past {
                     if fringe {
-                        cell.foot
+                        floor_beside_fringe(cell)
                     } else {
                         cell.top.max(cell.z)
                     }
@@ -178,6 +178,21 @@ fn fringe_of_wall(cell: &Cell, z: f32, y_mid: f32, r: f32, vs: f32) -> bool {
     cell.crest == cell.foot
         && cell.top - z > r
         && (cell.top_xy[1] - y_mid).abs() >= FACE_OFF_VOXELS * vs
+}
+
+/// The floor's height in a cell past the horizon that holds a wall's fringe
+/// ([`wall_goes_on`]), metres: its lower surface, or, where no band of the cell holds
+/// a surface (`foot` is the cell's mean: a tall face's points spread over so many
+/// voxel layers that neither band holds a quarter of them), its lowest voxel. The mean
+/// is the face's middle, not the floor: a one-track descent's 43 cm side face on the
+/// corridor's edge, in the first cell the image's top edge cuts, read 15 cm above
+/// the floor and made a `step` (`sweep -- oblique 100 5903` #57).
+fn floor_beside_fringe(cell: &Cell) -> f32 {
+    if cell.foot == cell.z {
+        cell.low.min(cell.foot)
+    } else {
+        cell.foot
+    }
 }
 
 /// How far past the last cell that showed a face along the strip (or its fringe)
