@@ -5,7 +5,7 @@
 use rover_terrain::memory::odometry::Untrusted;
 use rover_terrain::memory::{MemoryState, Motion};
 use rover_terrain::sim::{self, Element, Extent, Pose, Terrain};
-use rover_terrain::{Config, HazardKind, Pipeline, Side, Verdict};
+use rover_terrain::{Config, Decision, HazardKind, Pipeline, Side, Verdict};
 use rover_terrain_drivers::DepthFrame;
 use std::sync::OnceLock;
 
@@ -688,5 +688,59 @@ fn a_noisy_drive_fused_has_quieter_cells_and_smaller_errors_within_the_noisy_bar
     // ...and the ramp is measured within the noisy bars in every frame, fused or not.
     for e in [c.single, c.fused] {
         assert!(e.distance_max < 0.03 && e.gradient_max < 1.5, "{e:?}");
+    }
+}
+
+#[test]
+fn a_boulder_the_image_s_side_edge_cuts_off_near_the_rover_is_remembered() {
+    // A camera yawed 9.7° to the right (Kinect v1 0.98 m high, pitched 40°) does not
+    // see the left track's outer half 1 m ahead: an 18.9 cm boulder centred there shows
+    // one frame only its inner flank, 8 cm high at the image's left edge, and that
+    // frame alone is go (`sweep -- natural 100 5902 random` #95). Driving up to it
+    // from 0.6 m farther back, the camera sees it whole, and the memory keeps it.
+    let mut config = Config::default();
+    (config.mount.x_m, config.mount.y_m, config.mount.z_m) = (0.178, -0.028, 0.977);
+    (
+        config.mount.roll_deg,
+        config.mount.pitch_deg,
+        config.mount.yaw_deg,
+    ) = (-1.669, 40.443, -9.738);
+    let boulder = Terrain::new(vec![Element::Stone {
+        x_m: 0.979,
+        y_m: 0.506,
+        radius_m: 0.161,
+        height_m: 0.189,
+        shape: sim::StoneShape::Mound,
+    }]);
+    let mut fused = Pipeline::new(config.clone()).unwrap();
+    let step = Motion {
+        forward_m: 0.1,
+        dt_s: 0.1,
+        ..Motion::default()
+    };
+    for k in 0..7 {
+        let pose = Pose {
+            x: -0.6 + 0.1 * k as f64,
+            ..Pose::default()
+        };
+        let frame = sim::render_from(&boulder, &config, pose);
+        let motion = if k == 0 {
+            Err(Untrusted::NoOdometry)
+        } else {
+            Ok(step)
+        };
+        let v = fused.process_moved(&frame, motion).unwrap().clone();
+        assert_ne!(v.decision, Decision::Go, "frame {k}");
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Left),
+            "frame {k}: {:?}",
+            v.hazards
+        );
+        if k == 6 {
+            assert!(
+                v.memory.remembered_hazards > 0,
+                "the last frame's stop is not remembered"
+            );
+        }
     }
 }
