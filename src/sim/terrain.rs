@@ -284,6 +284,10 @@ impl Element {
                 radius_m,
                 height_m,
             } => {
+                // Outside the square about it (no root to take there).
+                if (x - x_m).abs() >= radius_m || (y - y_m).abs() >= radius_m {
+                    return 0.0;
+                }
                 let r = (x - x_m).hypot(y - y_m) / radius_m;
                 if r < 1.0 {
                     height_m * (1.0 - r * r).sqrt()
@@ -320,6 +324,9 @@ impl Element {
                 height_m,
                 shape,
             } => {
+                if (x - x_m).abs() >= radius_m || (y - y_m).abs() >= radius_m {
+                    return 0.0;
+                }
                 let r = (x - x_m).hypot(y - y_m) / radius_m;
                 height_m * shape.profile(r, height_m, radius_m)
             }
@@ -328,6 +335,33 @@ impl Element {
     }
 
     /// (lowest, highest) contribution, metres (unbounded ramps: what a 10 m run gives).
+    /// The square (x, y ranges, metres) outside which a block, rock or stone adds
+    /// nothing; `None` for the elements that reach everywhere or across a half-plane.
+    fn footprint(&self) -> Option<([f64; 2], [f64; 2])> {
+        match *self {
+            Element::Block {
+                x_m,
+                y_m,
+                length_m,
+                width_m,
+                ..
+            } => Some((
+                [x_m, x_m + length_m],
+                [y_m - width_m / 2.0, y_m + width_m / 2.0],
+            )),
+            Element::Rock {
+                x_m, y_m, radius_m, ..
+            }
+            | Element::Stone {
+                x_m, y_m, radius_m, ..
+            } => Some((
+                [x_m - radius_m, x_m + radius_m],
+                [y_m - radius_m, y_m + radius_m],
+            )),
+            _ => None,
+        }
+    }
+
     fn bounds(&self) -> (f64, f64) {
         let h = match *self {
             Element::Ramp {
@@ -601,6 +635,127 @@ impl HeightField<'_> {
             };
         }
         h
+    }
+}
+
+impl HeightField<'_> {
+    /// The least `t` in `[t0, t1]` at which the ray `origin + t·dir` (terrain frame,
+    /// metres) may meet the ground: before it the ray stays above an upper bound on
+    /// the height, in which a rising ramp is the half-plane past its toe line (its
+    /// extent and any descent aside), a step up the half-plane past its edge, and every
+    /// other element its highest point everywhere. `t1` when it never comes down to
+    /// that bound. The bound is piecewise linear along the ray, so the answer is exact
+    /// up to rounding: [`super::render`] only skips the height queries before it.
+    pub fn reach(&self, origin: [f64; 3], dir: [f64; 3], t0: f64, t1: f64) -> f64 {
+        // What every element but the rising ramps and steps may add, metres.
+        let mut base = 0.0;
+        // Where the bound's slope or value changes along the ray (more than it holds:
+        // no bound, the march asks everywhere).
+        let mut breaks = heapless::Vec::<f64, 48>::new();
+        let mut push = |t: f64| !(t > t0 && t < t1) || breaks.push(t).is_ok();
+        let mut room = true;
+        for (e, p) in self.terrain.elements.iter().zip(&self.prepared) {
+            match (e, p) {
+                (
+                    &Element::Ramp {
+                        toe_x_m,
+                        ref_y_m,
+                        cap_m,
+                        ..
+                    },
+                    Prepared::Ramp(trig),
+                ) => {
+                    if trig.tan <= 0.0 {
+                        continue;
+                    }
+                    // The distance past the toe line, a + b·t.
+                    let a = (origin[0] - toe_x_m) * trig.cos + (origin[1] - ref_y_m) * trig.sin;
+                    let b = dir[0] * trig.cos + dir[1] * trig.sin;
+                    if b != 0.0 {
+                        room &= push(-a / b);
+                        if let Some(cap) = cap_m {
+                            room &= push((cap / trig.tan - a) / b);
+                        }
+                    }
+                }
+                (&Element::Step { x_m, height_m, .. }, _) if height_m > 0.0 => {
+                    if dir[0] != 0.0 {
+                        room &= push((x_m - origin[0]) / dir[0]);
+                    }
+                }
+                _ => match e.footprint() {
+                    Some(([x0, x1], [y0, y1])) => {
+                        // Where the ray enters and leaves the footprint, seen from above.
+                        for (o, d, lo, hi) in
+                            [(origin[0], dir[0], x0, x1), (origin[1], dir[1], y0, y1)]
+                        {
+                            if d != 0.0 {
+                                room &= push((lo - o) / d);
+                                room &= push((hi - o) / d);
+                            }
+                        }
+                    }
+                    None => base += e.bounds().1,
+                },
+            }
+        }
+        if !room {
+            return t0;
+        }
+        let upper = |t: f64| {
+            let (x, y) = (origin[0] + t * dir[0], origin[1] + t * dir[1]);
+            let mut u = base;
+            for (e, p) in self.terrain.elements.iter().zip(&self.prepared) {
+                match (e, p) {
+                    (
+                        &Element::Ramp {
+                            toe_x_m,
+                            ref_y_m,
+                            cap_m,
+                            ..
+                        },
+                        Prepared::Ramp(trig),
+                    ) if trig.tan > 0.0 => {
+                        let across = (x - toe_x_m) * trig.cos + (y - ref_y_m) * trig.sin;
+                        let h = (across * trig.tan).max(0.0);
+                        u += cap_m.map_or(h, |cap| h.min(cap));
+                    }
+                    (&Element::Step { x_m, height_m, .. }, _) if height_m > 0.0 && x >= x_m => {
+                        u += height_m;
+                    }
+                    _ => {
+                        if let Some(([x0, x1], [y0, y1])) = e.footprint() {
+                            if (x0..=x1).contains(&x) && (y0..=y1).contains(&y) {
+                                u += e.bounds().1;
+                            }
+                        }
+                    }
+                }
+            }
+            u
+        };
+        breaks.sort_unstable_by(f64::total_cmp);
+        let mut a = t0;
+        for b in breaks.iter().copied().chain([t1]) {
+            let w = b - a;
+            if w > 0.0 {
+                // The bound is linear inside the piece: its line through two inner
+                // points, carried to the ends.
+                let (p, q) = (a + 0.25 * w, a + 0.75 * w);
+                let (up, uq) = (upper(p), upper(q));
+                let slope = (uq - up) / (q - p);
+                let ga = origin[2] + a * dir[2] - (up - slope * (p - a));
+                let gb = origin[2] + b * dir[2] - (uq + slope * (b - q));
+                if ga <= 0.0 {
+                    return a;
+                }
+                if gb <= 0.0 {
+                    return a + w * ga / (ga - gb);
+                }
+            }
+            a = b;
+        }
+        t1
     }
 }
 
