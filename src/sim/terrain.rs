@@ -408,6 +408,12 @@ impl RampTrig {
         }
     }
 
+    /// How far (x, y) lies past the toe line at `toe_x` (measured at `ref_y`), across
+    /// it, metres.
+    fn across(self, x: f64, y: f64, toe_x: f64, ref_y: f64) -> f64 {
+        (x - toe_x) * self.cos + (y - ref_y) * self.sin
+    }
+
     /// Height of the ramp with toe line at `toe_x` (measured at `ref_y`) over
     /// `extent`, capped at `cap`, at (x, y), metres.
     fn height(
@@ -422,7 +428,7 @@ impl RampTrig {
         if !extent.covers(y) {
             return 0.0;
         }
-        let across = (x - toe_x) * self.cos + (y - ref_y) * self.sin;
+        let across = self.across(x, y, toe_x, ref_y);
         if across <= 0.0 {
             return 0.0;
         }
@@ -638,101 +644,140 @@ impl HeightField<'_> {
     }
 }
 
+/// How one element bounds the height from above ([`HeightField::reach`]), metres.
+enum Upper {
+    /// A rising ramp: the half-plane past its toe line (at x, measured at y) at its
+    /// slope, up to its cap.
+    Ramp(RampTrig, [f64; 2], Option<f64>),
+    /// A step up: its height past its edge.
+    Step { x: f64, height: f64 },
+    /// A block, rock or stone: its height over the square about it.
+    Square {
+        x: [f64; 2],
+        y: [f64; 2],
+        height: f64,
+    },
+    /// Anything else: its highest point, everywhere (nothing for a descent).
+    Everywhere(f64),
+}
+
+impl Upper {
+    fn of(e: &Element, p: &Prepared) -> Upper {
+        match (e, p) {
+            (
+                &Element::Ramp {
+                    toe_x_m,
+                    ref_y_m,
+                    cap_m,
+                    ..
+                },
+                &Prepared::Ramp(trig),
+            ) if trig.tan > 0.0 => Upper::Ramp(trig, [toe_x_m, ref_y_m], cap_m),
+            (&Element::Step { x_m, height_m, .. }, _) if height_m > 0.0 => Upper::Step {
+                x: x_m,
+                height: height_m,
+            },
+            _ => match e.footprint() {
+                Some((x, y)) => Upper::Square {
+                    x,
+                    y,
+                    height: e.bounds().1,
+                },
+                None => Upper::Everywhere(e.bounds().1),
+            },
+        }
+    }
+
+    /// The bound at (x, y), metres.
+    fn at(&self, x: f64, y: f64) -> f64 {
+        match *self {
+            Upper::Ramp(trig, [toe_x, ref_y], cap) => {
+                let h = (trig.across(x, y, toe_x, ref_y) * trig.tan).max(0.0);
+                cap.map_or(h, |cap| h.min(cap))
+            }
+            Upper::Step { x: edge, height } => {
+                if x >= edge {
+                    height
+                } else {
+                    0.0
+                }
+            }
+            Upper::Square {
+                x: [x0, x1],
+                y: [y0, y1],
+                height,
+            } => {
+                if (x0..=x1).contains(&x) && (y0..=y1).contains(&y) {
+                    height
+                } else {
+                    0.0
+                }
+            }
+            Upper::Everywhere(height) => height,
+        }
+    }
+
+    /// Where the bound changes its slope or value along the ray `origin + t·dir`
+    /// (x and y, metres): each `t` is given to `push`, which says whether it kept it.
+    fn breaks(&self, origin: [f64; 3], dir: [f64; 3], mut push: impl FnMut(f64) -> bool) -> bool {
+        let at = |o: f64, d: f64, v: f64| (d != 0.0).then(|| (v - o) / d);
+        let mut kept = true;
+        let mut put = |t: Option<f64>| kept &= t.is_none_or(&mut push);
+        match *self {
+            Upper::Ramp(trig, [toe_x, ref_y], cap) => {
+                // The distance past the toe line, a + b·t.
+                let a = trig.across(origin[0], origin[1], toe_x, ref_y);
+                let b = dir[0] * trig.cos + dir[1] * trig.sin;
+                put(at(a, b, 0.0));
+                if let Some(cap) = cap {
+                    put(at(a, b, cap / trig.tan));
+                }
+            }
+            Upper::Step { x, .. } => put(at(origin[0], dir[0], x)),
+            Upper::Square { x, y, .. } => {
+                for (k, [lo, hi]) in [(0, x), (1, y)] {
+                    put(at(origin[k], dir[k], lo));
+                    put(at(origin[k], dir[k], hi));
+                }
+            }
+            Upper::Everywhere(_) => {}
+        }
+        kept
+    }
+}
+
 impl HeightField<'_> {
     /// The least `t` in `[t0, t1]` at which the ray `origin + t·dir` (terrain frame,
     /// metres) may meet the ground: before it the ray stays above an upper bound on
     /// the height, in which a rising ramp is the half-plane past its toe line (its
-    /// extent and any descent aside), a step up the half-plane past its edge, and every
-    /// other element its highest point everywhere. `t1` when it never comes down to
-    /// that bound. The bound is piecewise linear along the ray, so the answer is exact
-    /// up to rounding: [`super::render`] only skips the height queries before it.
+    /// extent aside), a step up the half-plane past its edge, a block, rock or stone
+    /// the square about it, and any other element its highest point everywhere. `t1`
+    /// when it never comes down to that bound. The bound is piecewise linear along
+    /// the ray, so the answer is exact up to rounding: [`super::render`] only skips
+    /// the height queries before it.
     pub fn reach(&self, origin: [f64; 3], dir: [f64; 3], t0: f64, t1: f64) -> f64 {
-        // What every element but the rising ramps and steps may add, metres.
-        let mut base = 0.0;
+        let uppers = || {
+            self.terrain
+                .elements
+                .iter()
+                .zip(&self.prepared)
+                .map(|(e, p)| Upper::of(e, p))
+        };
         // Where the bound's slope or value changes along the ray (more than it holds:
         // no bound, the march asks everywhere).
         let mut breaks = heapless::Vec::<f64, 48>::new();
-        let mut push = |t: f64| !(t > t0 && t < t1) || breaks.push(t).is_ok();
         let mut room = true;
-        for (e, p) in self.terrain.elements.iter().zip(&self.prepared) {
-            match (e, p) {
-                (
-                    &Element::Ramp {
-                        toe_x_m,
-                        ref_y_m,
-                        cap_m,
-                        ..
-                    },
-                    Prepared::Ramp(trig),
-                ) => {
-                    if trig.tan <= 0.0 {
-                        continue;
-                    }
-                    // The distance past the toe line, a + b·t.
-                    let a = (origin[0] - toe_x_m) * trig.cos + (origin[1] - ref_y_m) * trig.sin;
-                    let b = dir[0] * trig.cos + dir[1] * trig.sin;
-                    if b != 0.0 {
-                        room &= push(-a / b);
-                        if let Some(cap) = cap_m {
-                            room &= push((cap / trig.tan - a) / b);
-                        }
-                    }
-                }
-                (&Element::Step { x_m, height_m, .. }, _) if height_m > 0.0 => {
-                    if dir[0] != 0.0 {
-                        room &= push((x_m - origin[0]) / dir[0]);
-                    }
-                }
-                _ => match e.footprint() {
-                    Some(([x0, x1], [y0, y1])) => {
-                        // Where the ray enters and leaves the footprint, seen from above.
-                        for (o, d, lo, hi) in
-                            [(origin[0], dir[0], x0, x1), (origin[1], dir[1], y0, y1)]
-                        {
-                            if d != 0.0 {
-                                room &= push((lo - o) / d);
-                                room &= push((hi - o) / d);
-                            }
-                        }
-                    }
-                    None => base += e.bounds().1,
-                },
-            }
+        for u in uppers() {
+            room &= u.breaks(origin, dir, |t| {
+                !(t > t0 && t < t1) || breaks.push(t).is_ok()
+            });
         }
         if !room {
             return t0;
         }
         let upper = |t: f64| {
             let (x, y) = (origin[0] + t * dir[0], origin[1] + t * dir[1]);
-            let mut u = base;
-            for (e, p) in self.terrain.elements.iter().zip(&self.prepared) {
-                match (e, p) {
-                    (
-                        &Element::Ramp {
-                            toe_x_m,
-                            ref_y_m,
-                            cap_m,
-                            ..
-                        },
-                        Prepared::Ramp(trig),
-                    ) if trig.tan > 0.0 => {
-                        let across = (x - toe_x_m) * trig.cos + (y - ref_y_m) * trig.sin;
-                        let h = (across * trig.tan).max(0.0);
-                        u += cap_m.map_or(h, |cap| h.min(cap));
-                    }
-                    (&Element::Step { x_m, height_m, .. }, _) if height_m > 0.0 && x >= x_m => {
-                        u += height_m;
-                    }
-                    _ => {
-                        if let Some(([x0, x1], [y0, y1])) = e.footprint() {
-                            if (x0..=x1).contains(&x) && (y0..=y1).contains(&y) {
-                                u += e.bounds().1;
-                            }
-                        }
-                    }
-                }
-            }
-            u
+            uppers().map(|u| u.at(x, y)).sum::<f64>()
         };
         breaks.sort_unstable_by(f64::total_cmp);
         let mut a = t0;
