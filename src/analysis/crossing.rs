@@ -181,12 +181,14 @@ fn fringe_of_wall(cell: &Cell, z: f32, y_mid: f32, r: f32, vs: f32) -> bool {
 }
 
 /// The floor's height in a cell past the horizon that holds a wall's fringe
-/// ([`wall_goes_on`]), metres: its lower surface, or, where no band of the cell holds
-/// a surface (`foot` is the cell's mean: a tall face's points spread over so many
-/// voxel layers that neither band holds a quarter of them), its lowest voxel. The mean
+/// ([`wall_goes_on`]), metres: its lower surface, or, where `foot` is the cell's mean,
+/// its lowest voxel (a bound, and past the horizon the lower one proves less). The
+/// mean is what a cell whose bands hold no surface gives (a tall face's points spread
+/// over so many voxel layers that neither band holds a quarter of them), and then it
 /// is the face's middle, not the floor: a one-track descent's 43 cm side face on the
-/// corridor's edge, in the first cell the image's top edge cuts, read 15 cm above
-/// the floor and made a `step` (`sweep -- oblique 100 5903` #57).
+/// corridor's edge, in the first cell the image's top edge cuts, read 15 cm above the
+/// floor and made a `step` (`sweep -- oblique 100 5903` #57). A cell of one surface
+/// gives its mean too; its lowest voxel lies within a voxel of it.
 fn floor_beside_fringe(cell: &Cell) -> f32 {
     if cell.foot == cell.z {
         cell.low.min(cell.foot)
