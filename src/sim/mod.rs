@@ -16,6 +16,8 @@ pub use terrain::{Element, Extent, HeightField, StoneShape, Terrain, ROUGH_WAVES
 use rover_terrain_drivers::DepthFrame;
 
 use crate::config::Config;
+use nalgebra::Vector3;
+
 use crate::projection::Projector;
 
 /// Farthest optical depth the renderer looks, metres (no hit within it = no return).
@@ -80,29 +82,49 @@ pub fn render_from(terrain: &Terrain, config: &Config, pose: Pose) -> DepthFrame
     DepthFrame::from_pixels(w, h, pixels)
 }
 
+/// The span of a ray's parameter `t` (metres along `d` per unit) that the march
+/// walks: from where the ray (origin height `oz`, rise `dz` per unit of `t`) comes down
+/// to the terrain's highest point to where it passes its lowest (`bounds`, widened by a
+/// margin so that a surface lying exactly at a bound is inside), within [`FAR_M`];
+/// `None` when the ray never is between them.
+fn march_span((lo, hi): (f64, f64), oz: f64, dz: f64) -> Option<(f64, f64)> {
+    let (lo, hi) = (lo - 0.01, hi + 0.01);
+    let (t0, t1) = if dz < 0.0 {
+        (((oz - hi) / -dz).max(0.0), ((oz - lo) / -dz).min(FAR_M))
+    } else if oz <= hi {
+        (0.0, FAR_M)
+    } else {
+        return None;
+    };
+    (t0 <= t1).then_some((t0, t1))
+}
+
+/// The ray from rover-frame `o` along `d` in the terrain's frame, the rover at `pose`
+/// (`heading`: its (sin, cos)): origin and direction.
+fn ray_in_terrain(
+    pose: Pose,
+    heading: (f64, f64),
+    o: &Vector3<f64>,
+    d: &Vector3<f64>,
+) -> ([f64; 3], [f64; 3]) {
+    let (s, c) = heading;
+    let (ox, oy) = pose.to_terrain_by(heading, o.x, o.y);
+    ([ox, oy, o.z], [c * d.x - s * d.y, s * d.x + c * d.y, d.z])
+}
+
 /// The optical depth (mm) at which pixel (u, v)'s ray meets the terrain.
 fn cast(terrain: &HeightField, pose: Pose, projector: &Projector, u: usize, v: usize) -> u16 {
     let d = projector.ray(u, v);
     let o = projector.point(u, v, 0.0);
-    // A margin, so that a surface lying exactly at a bound is inside the interval.
-    let (lo, hi) = terrain.bounds();
-    let (lo, hi) = (lo - 0.01, hi + 0.01);
     let heading = pose.heading.sin_cos();
     let height = |x: f64, y: f64| {
         let (tx, ty) = pose.to_terrain_by(heading, x, y);
         terrain.height(tx, ty)
     };
     let above = |t: f64| o.z + t * d.z - height(o.x + t * d.x, o.y + t * d.y);
-    let (mut t0, t1) = if d.z < 0.0 {
-        (((o.z - hi) / -d.z).max(0.0), ((o.z - lo) / -d.z).min(FAR_M))
-    } else if o.z <= hi {
-        (0.0, FAR_M)
-    } else {
+    let Some((mut t0, t1)) = march_span(terrain.bounds(), o.z, d.z) else {
         return 0;
     };
-    if t0 > t1 {
-        return 0;
-    }
     let dt = STEP_M / d.norm();
     if above(t0) <= 0.0 {
         return to_mm(t0);
@@ -110,14 +132,8 @@ fn cast(terrain: &HeightField, pose: Pose, projector: &Projector, u: usize, v: u
     // Before `reach` the ray is above a bound on the ground: the march steps on
     // without asking the height there (two steps' margin for rounding), so that its
     // steps, and the bracket it finds, are the ones it took asking at every step.
-    let (s, c) = heading;
-    let (ox, oy) = pose.to_terrain_by(heading, o.x, o.y);
-    let reach = terrain.reach(
-        [ox, oy, o.z],
-        [c * d.x - s * d.y, s * d.x + c * d.y, d.z],
-        t0,
-        t1,
-    ) - 2.0 * dt;
+    let (origin, dir) = ray_in_terrain(pose, heading, &o, &d);
+    let reach = terrain.reach(origin, dir, t0, t1) - 2.0 * dt;
     let mut t = t0;
     loop {
         let next = (t + dt).min(t1);
@@ -430,28 +446,21 @@ mod tests {
                 y: 0.05 * i as f64 - 1.0,
                 heading: 0.03 * i as f64 - 0.6,
             };
-            let (s, co) = pose.heading.sin_cos();
-            let (lo, hi) = field.bounds();
+            let heading = pose.heading.sin_cos();
             // A 32 × 24 sample of the image's pixels.
             let pixels = (0..32).flat_map(|a| (0..24).map(move |b| (a * w / 32, b * h / 24)));
             for (u, v) in pixels {
                 let (r, o) = (p.ray(u, v), p.point(u, v, 0.0));
-                if r.z >= 0.0 {
+                let Some((t0, t1)) = march_span(field.bounds(), o.z, r.z) else {
                     continue;
-                }
-                let t0 = ((o.z - hi - 0.01) / -r.z).max(0.0);
-                let t1 = ((o.z - lo + 0.01) / -r.z).min(FAR_M);
-                if t0 > t1 {
-                    continue;
-                }
-                let (ox, oy) = pose.to_terrain(o.x, o.y);
-                let dir = [co * r.x - s * r.y, s * r.x + co * r.y, r.z];
-                let reach = field.reach([ox, oy, o.z], dir, t0, t1);
+                };
+                let (origin, dir) = ray_in_terrain(pose, heading, &o, &r);
+                let reach = field.reach(origin, dir, t0, t1);
                 assert!((t0..=t1).contains(&reach), "scene {i} ({u}, {v})");
                 let mut t = t0;
                 while t < reach {
-                    let (x, y) = (ox + t * dir[0], oy + t * dir[1]);
-                    let above = o.z + t * r.z - field.height(x, y);
+                    let (x, y) = (origin[0] + t * dir[0], origin[1] + t * dir[1]);
+                    let above = origin[2] + t * dir[2] - field.height(x, y);
                     assert!(above > 0.0, "scene {i} ({u}, {v}): {above} m at t = {t}");
                     t += 0.002;
                 }

@@ -179,6 +179,12 @@ impl StoneShape {
     }
 }
 
+/// Whether the offset (dx, dy) from a round element's centre lies outside the square
+/// about its `radius` (metres), where it adds nothing: no root to take there.
+fn outside_square(dx: f64, dy: f64, radius: f64) -> bool {
+    dx.abs() >= radius || dy.abs() >= radius
+}
+
 /// A uniform number in [−1, 1] for lattice point (i, j) of field `seed`
 /// (SplitMix64 of the three).
 fn lattice_value(i: i64, j: i64, seed: u64) -> f64 {
@@ -284,8 +290,7 @@ impl Element {
                 radius_m,
                 height_m,
             } => {
-                // Outside the square about it (no root to take there).
-                if (x - x_m).abs() >= radius_m || (y - y_m).abs() >= radius_m {
+                if outside_square(x - x_m, y - y_m, radius_m) {
                     return 0.0;
                 }
                 let r = (x - x_m).hypot(y - y_m) / radius_m;
@@ -324,7 +329,7 @@ impl Element {
                 height_m,
                 shape,
             } => {
-                if (x - x_m).abs() >= radius_m || (y - y_m).abs() >= radius_m {
+                if outside_square(x - x_m, y - y_m, radius_m) {
                     return 0.0;
                 }
                 let r = (x - x_m).hypot(y - y_m) / radius_m;
@@ -334,7 +339,6 @@ impl Element {
         }
     }
 
-    /// (lowest, highest) contribution, metres (unbounded ramps: what a 10 m run gives).
     /// The square (x, y ranges, metres) outside which a block, rock or stone adds
     /// nothing; `None` for the elements that reach everywhere or across a half-plane.
     fn footprint(&self) -> Option<([f64; 2], [f64; 2])> {
@@ -362,6 +366,7 @@ impl Element {
         }
     }
 
+    /// (lowest, highest) contribution, metres (unbounded ramps: what a 10 m run gives).
     fn bounds(&self) -> (f64, f64) {
         let h = match *self {
             Element::Ramp {
