@@ -2153,3 +2153,73 @@ fn seen_front_width(
     }
     stripes.len() as f64 * STRIPE_M
 }
+
+#[test]
+fn a_wall_cut_where_its_lower_band_is_too_sparse_to_be_the_floor_is_no_floor_that_rises() {
+    // A 17° descent under the right track only, met at 36°, seen by a D435-like camera
+    // 0.53 m high pitched 42° and rolled −7.5°: 2.9 m out, in a cell the image's top
+    // edge cuts, the track's outer side face (37 cm) held a quarter of the cell's
+    // points in its upper band and the floor too few in the lower one, so the cell's
+    // lower surface fell back to its upper one, the face's top: a rise of 30 cm into
+    // a cut cell, a `step` (`sweep -- oblique 100 6203` #66, clean and noisy).
+    let mut c = mounted(
+        [0.249_558_5, -0.056_139_2, 0.531_800_7],
+        [-7.471_745_3, 41.913_227_5, -7.137_952_6],
+    );
+    c.camera = rover_terrain::config::CameraConfig {
+        width: 848,
+        height: 480,
+        fx: Some(431.588_867),
+        fy: Some(430.066_128),
+        cx: Some(416.414_887),
+        cy: Some(245.802_260),
+        min_range_m: 0.325_873,
+        ..c.camera
+    };
+    let descent = Element::ramp(1.177_116, -0.45, -17.060_374, 35.979_487, RIGHT_TRACK);
+    for v in analyse_views(vec![descent.clone()], &c, [None, Some(6_203_066)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert_eq!(v.feature.map(|f| f.workcase), Some(10));
+    }
+    // A block on that floor against the face, up to the ground beside it or above,
+    // is still an obstacle.
+    for (x_m, height_m) in [(2.5, 0.45), (2.7, 0.6)] {
+        let block = block_at(x_m, -0.55, 0.2, 0.25, height_m);
+        for v in analyse_views(vec![descent.clone(), block], &c, [None, Some(6_203_066)]) {
+            assert_ne!(v.decision, Decision::Go, "{height_m} m at {x_m} m");
+        }
+    }
+}
+
+#[test]
+fn a_wall_s_top_is_the_highest_its_cells_show_not_the_last() {
+    // A 10.7° descent under the left track only, 21.7 cm deep, seen by a Kinect v1
+    // 0.52 m high pitched 32°, with noise. The track's outer side face, whose top is
+    // the ground beside the track (0), showed its top at 0 in one cell and at −2.7 cm
+    // in the next (a cell's top is the highest voxel layer with enough points); the
+    // first cut cell's top at 0 then stood over the face's last top, so it was read as
+    // the floor risen 20 cm, a `step` (`sweep -- natural 100 6202 random` #3, noisy).
+    let mut c = mounted(
+        [0.205_451_9, -0.042_740_9, 0.523_820_6],
+        [-3.788_976_7, 32.269_332_9, -5.504_985_5],
+    );
+    c.camera.min_range_m = 0.451_556;
+    let descent = Element::Ramp {
+        toe_x_m: 1.271_337,
+        ref_y_m: 0.45,
+        gradient_deg: -10.723_547,
+        alpha_deg: 0.0,
+        extent: LEFT_TRACK,
+        cap_m: Some(0.217_044),
+    };
+    for v in analyse_views(vec![descent.clone()], &c, [None, Some(6_202_003)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert_eq!(v.feature.map(|f| f.workcase), Some(9));
+    }
+    for (x_m, height_m) in [(2.5, 0.45), (2.7, 0.6)] {
+        let block = block_at(x_m, 0.55, 0.2, 0.25, height_m);
+        for v in analyse_views(vec![descent.clone(), block], &c, [None, Some(6_202_003)]) {
+            assert_ne!(v.decision, Decision::Go, "{height_m} m at {x_m} m");
+        }
+    }
+}

@@ -53,6 +53,11 @@ pub fn steps_and_slopes(
             // The face along the strip the last seen cell showed, [x, top, top's y],
             // when it stood more than a wheel radius above that cell's ground (a
             // trench's wall); x moves on through cut cells that hold only its fringe.
+            // Its top is the highest the run of cells showing it showed: a cell's top
+            // is the highest voxel layer with enough points, so along one face it
+            // moves by half a voxel from cell to cell (noisy, `sweep -- natural 100
+            // 6202 random` #3: 0 and −2.7 cm on a wall whose top is at 0, and the
+            // next cut cell's 0 no longer on it made a 20 cm `step`).
             let mut wall: Option<[f32; 3]> = None;
             for ix in 0..f.spec.nx {
                 let c = f.spec.cell(ix, iy);
@@ -107,13 +112,14 @@ pub fn steps_and_slopes(
                 if !past {
                     surface[c] = z;
                 }
+                let highest = wall.map_or(cell.top, |[_, top, _]| top.max(cell.top));
                 wall = match (along, wall) {
                     (Some(ground), _) if cell.top - ground > r => {
-                        Some([cell.x, cell.top, cell.top_xy[1]])
+                        Some([cell.x, highest, cell.top_xy[1]])
                     }
                     (None, Some([_, top, top_y])) if fringe => Some([cell.x, top, top_y]),
                     (None, _) if !past && fringe_of_wall(cell, z, f.spec.y_centre(iy), r, vs) => {
-                        Some([cell.x, cell.top, cell.top_xy[1]])
+                        Some([cell.x, highest, cell.top_xy[1]])
                     }
                     _ => None,
                 };
@@ -181,16 +187,19 @@ fn fringe_of_wall(cell: &Cell, z: f32, y_mid: f32, r: f32, vs: f32) -> bool {
 }
 
 /// The floor's height in a cell past the horizon that holds a wall's fringe
-/// ([`wall_goes_on`]), metres: its lower surface, or, where `foot` is the cell's mean,
-/// its lowest voxel (a bound, and past the horizon the lower one proves less). The
-/// mean is what a cell whose bands hold no surface gives (a tall face's points spread
-/// over so many voxel layers that neither band holds a quarter of them), and then it
-/// is the face's middle, not the floor: a one-track descent's 43 cm side face on the
-/// corridor's edge, in the first cell the image's top edge cuts, read 15 cm above the
-/// floor and made a `step` (`sweep -- oblique 100 5903` #57). A cell of one surface
-/// gives its mean too; its lowest voxel lies within a voxel of it.
+/// ([`wall_goes_on`]), metres: its lower surface, or, where `foot` is not one (it is
+/// the cell's mean or its upper surface), its lowest voxel (a bound, and past the
+/// horizon the lower one proves less). `foot` falls back to the mean when neither
+/// band holds a surface (a tall face's points spread over so many voxel layers that
+/// neither band holds a quarter of them), and to `crest` when only the upper band
+/// does; either is then the face, not the floor. A one-track descent's 43 cm side
+/// face on the corridor's edge, in the first cell the image's top edge cuts, read
+/// 15 cm above the floor and made a `step` (`sweep -- oblique 100 5903` #57, the
+/// mean); a 37 cm one, 30 cm above it (`oblique 100 6203` #66, the upper band). A
+/// cell of one surface gives its mean for both too; its lowest voxel lies within a
+/// voxel of it.
 fn floor_beside_fringe(cell: &Cell) -> f32 {
-    if cell.foot == cell.z {
+    if cell.foot == cell.z || cell.foot == cell.crest {
         cell.low.min(cell.foot)
     } else {
         cell.foot
