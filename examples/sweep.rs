@@ -5,7 +5,9 @@
 //! `sim::families` on the default rig or on random mounts and cameras, or
 //! `-- natural [N] [SEED] [default|random] [FAMILY-INDEX]` for the same scenes drawn
 //! another way (`families::restyled`: value-noise rough ground, stones of four other
-//! shapes), or
+//! shapes), or `-- bevelled [N] [SEED] [default|random] [FAMILY-INDEX]` for them
+//! with every band's vertical sides sloping (`families::bevelled`: a one-track
+//! ramp's side face fading over 2-15 cm), or
 //! `-- hazards N SEED random` for the go/stop edges on random rigs, each edge where
 //! the rig sees the tracks, or `-- edges N SEED` for impassable edges that sweep
 //! does not draw (a step down under one side, a descent steeper than the limit, a
@@ -142,7 +144,7 @@ fn main() {
     if exact {
         println!("{not_drawn} scenes not drawn (not made of planes and rocks)");
     }
-    if matches!(mode, "oblique" | "families" | "natural") {
+    if matches!(mode, "oblique" | "families" | "natural" | "bevelled") {
         println!(
             "{} frames met a surface under {GRAZING_DEG}° (any verdict passes), {} of them not go",
             excused.0, excused.1
@@ -153,13 +155,13 @@ fn main() {
 /// Whether scene `terrain` of `mode`, expected `want` on `config`'s rig, is excused: a
 /// climbable surface the camera meets at grazing incidence somewhere in the tracks (a
 /// descent as steep as the line of sight to it) is not seen there, so any verdict
-/// passes, and go is the analysis' inference. In `families` and `natural`, for a scene
+/// passes, and go is the analysis' inference. In `families`, `natural` and `bevelled`, for a scene
 /// due go, judged on its planes alone (the far flanks of rough ground's bumps and of
 /// stones face away from the camera too, and excuse nothing).
 fn unseen_at_grazing(mode: &str, want: &Expectation, terrain: &Terrain, config: &Config) -> bool {
     match mode {
         "oblique" => grazing(terrain, config),
-        "families" | "natural" if want.verdict == Decision::Go => {
+        "families" | "natural" | "bevelled" if want.verdict == Decision::Go => {
             grazing(&planes_of(terrain), config)
         }
         _ => false,
@@ -232,7 +234,7 @@ fn draw(
             let (t, w) = random::hazard_scene(rng, i);
             (t, w, Config::default(), tol)
         }
-        "families" | "natural" => {
+        "families" | "natural" | "bevelled" => {
             let rig = if random_rig {
                 families::Rig::random(rng)
             } else {
@@ -248,6 +250,11 @@ fn draw(
                 let mut style = rng.clone();
                 style.set_stream(1);
                 d = families::restyled(&mut style, d);
+            }
+            if mode == "bevelled" {
+                let mut style = rng.clone();
+                style.set_stream(2);
+                d = families::bevelled(&mut style, d);
             }
             (d.terrain, d.expect, d.rig.config, d.tolerance)
         }

@@ -453,6 +453,26 @@ pub fn restyled<R: Rng>(rng: &mut R, mut d: Draw) -> Draw {
     d
 }
 
+/// `d` with every band's vertical sides drawn sloping, as a renderer other than ours
+/// might ([`Extent::Bevelled`]): a one-track ramp's or descent's side face, the edge
+/// of ground falling away beside a track, each fades over 2-15 cm centred on the
+/// band's edge, as a height map sampled that far apart and interpolated draws them.
+/// The expectation stands: the tracks' ground and the rover's limits do not change.
+pub fn bevelled<R: Rng>(rng: &mut R, mut d: Draw) -> Draw {
+    for e in &mut d.terrain.elements {
+        if let Element::Ramp { extent, .. } | Element::Step { extent, .. } = e {
+            if let Extent::Band { from_m, to_m } = *extent {
+                *extent = Extent::Bevelled {
+                    from_m,
+                    to_m,
+                    side_m: rng.gen_range(0.02..0.15),
+                };
+            }
+        }
+    }
+    d
+}
+
 /// Draw a scene of `family` on `rig`.
 pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
     let at = Setting::new(rng, &rig.config);

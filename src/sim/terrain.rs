@@ -20,6 +20,18 @@ pub enum Extent {
         /// Left edge (larger y), metres.
         to_m: f64,
     },
+    /// Like [`Extent::Band`], but its sides slope where the band's stand vertical:
+    /// the element's height fades linearly to nothing over `side_m` centred on each
+    /// edge, as a renderer that samples the ground on a grid `side_m` apart and
+    /// interpolates between the samples draws a vertical side face.
+    Bevelled {
+        /// Right edge (smaller y), the middle of its slope, metres.
+        from_m: f64,
+        /// Left edge (larger y), the middle of its slope, metres.
+        to_m: f64,
+        /// Width of each side's slope, metres (not positive: vertical, a band).
+        side_m: f64,
+    },
 }
 
 impl Extent {
@@ -30,6 +42,31 @@ impl Extent {
             Extent::Left => y >= 0.0,
             Extent::Right => y <= 0.0,
             Extent::Band { from_m, to_m } => (from_m..=to_m).contains(&y),
+            Extent::Bevelled { .. } => self.share(y) > 0.0,
+        }
+    }
+
+    /// How much of an element's height stands at lateral position `y` (metres): 1
+    /// where it is covered, 0 where not, in between across a bevelled side.
+    pub fn share(self, y: f64) -> f64 {
+        match self {
+            Extent::Bevelled {
+                from_m,
+                to_m,
+                side_m,
+            } if side_m > 0.0 => {
+                let rise = (y - from_m) / side_m + 0.5;
+                let fall = (to_m - y) / side_m + 0.5;
+                rise.min(fall).clamp(0.0, 1.0)
+            }
+            Extent::Bevelled { from_m, to_m, .. } => Extent::Band { from_m, to_m }.share(y),
+            _ => {
+                if self.covers(y) {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
         }
     }
 }
@@ -265,8 +302,8 @@ impl Element {
                 height_m,
                 extent,
             } => {
-                if extent.covers(y) && x >= x_m {
-                    height_m
+                if x >= x_m {
+                    height_m * extent.share(y)
                 } else {
                     0.0
                 }
@@ -430,7 +467,8 @@ impl RampTrig {
         extent: Extent,
         cap: Option<f64>,
     ) -> f64 {
-        if !extent.covers(y) {
+        let share = extent.share(y);
+        if share == 0.0 {
             return 0.0;
         }
         let across = self.across(x, y, toe_x, ref_y);
@@ -438,10 +476,11 @@ impl RampTrig {
             return 0.0;
         }
         let h = across * self.tan;
-        match cap {
-            Some(cap) => h.clamp(-cap, cap),
-            None => h,
-        }
+        share
+            * match cap {
+                Some(cap) => h.clamp(-cap, cap),
+                None => h,
+            }
     }
 }
 
@@ -881,6 +920,74 @@ mod tests {
         let h = (1.0 - a) * ((1.0 - b) * at(0.0, 0.0) + b * at(0.0, 1.0))
             + a * ((1.0 - b) * at(1.0, 0.0) + b * at(1.0, 1.0));
         h.clamp(-t.amplitude, t.amplitude)
+    }
+
+    #[test]
+    fn a_bevelled_band_fades_its_element_linearly_across_each_side() {
+        // A 20° ramp from x = 1 m under the left track, its sides sloping over 10 cm
+        // centred on y = 0.2 and 0.7 m; and a 15 cm step over the same band.
+        let extent = Extent::Bevelled {
+            from_m: 0.2,
+            to_m: 0.7,
+            side_m: 0.1,
+        };
+        let tan = 20f64.to_radians().tan();
+        let ramp = Terrain::new(vec![Element::ramp(1.0, 0.45, 20.0, 0.0, extent)]);
+        let step = Terrain::new(vec![Element::Step {
+            x_m: 1.0,
+            height_m: 0.15,
+            extent,
+        }]);
+        let (ramp, step) = (ramp.field(), step.field());
+        // (y, share of the height): none outside, half on each edge, all inside.
+        for (y, share) in [
+            (0.1, 0.0),
+            (0.15, 0.0),
+            (0.175, 0.25),
+            (0.2, 0.5),
+            (0.225, 0.75),
+            (0.25, 1.0),
+            (0.45, 1.0),
+            (0.65, 1.0),
+            (0.7, 0.5),
+            (0.74, 0.1),
+            (0.75, 0.0),
+            (-0.45, 0.0),
+        ] {
+            for x in [0.5, 1.0, 1.5, 2.5] {
+                let want = (x - 1.0f64).max(0.0) * tan * share;
+                assert!(
+                    (ramp.height(x, y) - want).abs() < 1e-12,
+                    "ramp at ({x}, {y})"
+                );
+                let want = if x >= 1.0 { 0.15 * share } else { 0.0 };
+                assert!(
+                    (step.height(x, y) - want).abs() < 1e-12,
+                    "step at ({x}, {y})"
+                );
+            }
+        }
+        // No slope: the band's vertical sides, the same heights bit for bit.
+        let band = Extent::Band {
+            from_m: 0.2,
+            to_m: 0.7,
+        };
+        let sheer = Extent::Bevelled {
+            from_m: 0.2,
+            to_m: 0.7,
+            side_m: 0.0,
+        };
+        let [a, b] =
+            [band, sheer].map(|e| Terrain::new(vec![Element::ramp(1.0, 0.45, 20.0, 10.0, e)]));
+        let (a, b) = (a.field(), b.field());
+        for k in 0..200 {
+            let (x, y) = (0.5 + 0.01 * f64::from(k), -0.1 + 0.0047 * f64::from(k));
+            assert_eq!(
+                a.height(x, y).to_bits(),
+                b.height(x, y).to_bits(),
+                "({x}, {y})"
+            );
+        }
     }
 
     #[test]

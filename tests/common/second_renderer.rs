@@ -268,13 +268,14 @@ impl Ground {
 
 /// The sim's terrain as planar pieces and rocks, where it is made only of ramps (capped
 /// or not), steps, drop-offs, blocks and rocks (half-ellipsoids) over regions that do
-/// not overlap; `None` otherwise.
+/// not overlap, with vertical sides; `None` otherwise.
 pub fn planar(terrain: &Terrain) -> Option<Ground> {
     let span = |e: Extent| match e {
-        Extent::Full => (f64::NEG_INFINITY, f64::INFINITY),
-        Extent::Left => (0.0, f64::INFINITY),
-        Extent::Right => (f64::NEG_INFINITY, 0.0),
-        Extent::Band { from_m, to_m } => (from_m, to_m),
+        Extent::Full => Some((f64::NEG_INFINITY, f64::INFINITY)),
+        Extent::Left => Some((0.0, f64::INFINITY)),
+        Extent::Right => Some((f64::NEG_INFINITY, 0.0)),
+        Extent::Band { from_m, to_m } => Some((from_m, to_m)),
+        Extent::Bevelled { .. } => None,
     };
     let mut ground = Ground::flat();
     // Rocks stand on flat ground: apart from each other and from every other element.
@@ -304,8 +305,8 @@ pub fn planar(terrain: &Terrain) -> Option<Ground> {
     for e in &terrain.elements {
         let (from, to) = match *e {
             Element::Rock { .. } => continue,
-            Element::Ramp { extent, .. } | Element::Step { extent, .. } => span(extent),
-            Element::DropOff { .. } => span(Extent::Full),
+            Element::Ramp { extent, .. } | Element::Step { extent, .. } => span(extent)?,
+            Element::DropOff { .. } => span(Extent::Full)?,
             Element::Block { y_m, width_m, .. } => (y_m - width_m / 2.0, y_m + width_m / 2.0),
             _ => return None,
         };
