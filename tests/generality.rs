@@ -2223,3 +2223,43 @@ fn a_wall_s_top_is_the_highest_its_cells_show_not_the_last() {
         }
     }
 }
+
+#[test]
+fn a_rock_field_s_step_is_measured_from_the_ground_before_it_not_the_rover_s() {
+    // Rocks of 4.6-8.9 cm on rough ground (±2.5 cm, 12.9 cm correlation), seen by a
+    // Kinect v1 0.98 m high pitched 21.5°. The face analysis found a low step across
+    // the tracks; measured from the rover's own ground (z = 0), the 8.9 cm rock on a
+    // 2 cm bump stood 11.3 cm high, over the wheel radius, and stopped the rover
+    // (`sweep -- bevelled 100 6401 random` #50, clean and noisy). The wheel meets it
+    // from the ground before it, 1-2 cm up.
+    let mut c = mounted(
+        [0.137_156_7, 0.008_023_2, 0.983_211_6],
+        [-5.146_626_2, 21.543_963_3, 1.404_315_8],
+    );
+    c.camera.min_range_m = 0.476_532;
+    let rough = Element::Rough {
+        amplitude_m: 0.025,
+        correlation_m: 0.128_653,
+        seed: 1_964_257_335_640_242_765,
+    };
+    let field = |tallest: f64| {
+        vec![
+            rough.clone(),
+            rock(1.894_915, -0.564_470, 0.093_119, 0.054_206),
+            rock(2.100_864, -0.288_261, 0.118_203, 0.066_808),
+            rock(2.135_255, 0.537_886, 0.166_741, tallest),
+            rock(2.489_975, -0.614_080, 0.139_187, 0.083_574),
+            rock(2.440_402, 0.374_578, 0.089_969, 0.072_459),
+            rock(1.300_706, -0.361_381, 0.089_513, 0.045_953),
+        ]
+    };
+    for v in analyse_views(field(0.088_887), &c, [None, Some(6_401_050)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    }
+    // The same field with that rock 15 cm high, or 20 cm, stops.
+    for tallest in [0.15, 0.2] {
+        for v in analyse_views(field(tallest), &c, [None, Some(6_401_050)]) {
+            assert_eq!(v.decision, Decision::Stop, "{tallest} m: {:?}", v.hazards);
+        }
+    }
+}

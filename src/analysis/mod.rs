@@ -478,7 +478,7 @@ fn too_steep_face(
 }
 
 /// Whether a go's measured face (`measured`) is a step (±90°) whose ground past its
-/// onsets stands a wheel radius or more off the rover's ground (`step_relief`,
+/// onsets stands a wheel radius or more off the ground before them (`step_relief`,
 /// metres, from `feature::analyse`): then it is no low step, and a `step` hazard on
 /// each side its workcase names goes into `verdict`, where the toe line is nearest
 /// within that side's wheel track, metres.
