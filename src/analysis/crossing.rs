@@ -50,9 +50,14 @@ pub fn steps_and_slopes(
             strip.clear();
             // The last two chosen (x, z): the strip's height and slope so far.
             let mut last: [Option<(f32, f32)>; 2] = [None, None];
-            // The face along the strip the last seen cell showed, [x, top, top's y],
-            // when it stood more than a wheel radius above that cell's ground (a
-            // trench's wall); x moves on through cut cells that hold only its fringe.
+            // The face along the strip the last seen cell showed, [x, top, top's y]
+            // (a trench's wall); x moves on through cut cells that hold only its
+            // fringe. However high it stood over that cell's ground: a 15 cm wall
+            // read 10.8 cm over its cell's ground, its top voxel's mean under the
+            // wall's top and the ground's mean over the floor with a few of the
+            // face's points, and its fringe in the next cut cell then stood 11.3 cm
+            // over the strip, a `step` (noisy, `sweep -- families 100 6306 random`
+            // #25). A face's fringe can fake a rise only up to its own top.
             // Its top is the highest the run of cells showing it showed: a cell's top
             // is the highest voxel layer with enough points, so along one face it
             // moves by half a voxel from cell to cell (noisy, `sweep -- natural 100
@@ -114,9 +119,7 @@ pub fn steps_and_slopes(
                 }
                 let highest = wall.map_or(cell.top, |[_, top, _]| top.max(cell.top));
                 wall = match (along, wall) {
-                    (Some(ground), _) if cell.top - ground > r => {
-                        Some([cell.x, highest, cell.top_xy[1]])
-                    }
+                    (Some(_), _) => Some([cell.x, highest, cell.top_xy[1]]),
                     (None, Some([_, top, top_y])) if fringe => Some([cell.x, top, top_y]),
                     (None, _) if !past && fringe_of_wall(cell, z, f.spec.y_centre(iy), r, vs) => {
                         Some([cell.x, highest, cell.top_xy[1]])
@@ -141,8 +144,8 @@ pub fn steps_and_slopes(
 
 /// Whether a cell past the horizon holds only the fringe of the face along its strip
 /// that the strip's last seen cell showed (`wall`: that cell's x, top and top's y,
-/// metres, when its ground lay more than a wheel radius below its top; x moved on to
-/// each cut cell after it holding only that fringe). The cell's upper band is under
+/// metres, the top the highest of the run of cells that showed it; x moved on to each
+/// cut cell after it holding only that fringe). The cell's upper band is under
 /// [`crate::grid::SURFACE_MIN_SHARE`] of its points (`crest` is `foot`), or centres
 /// on the face's line too (the fringe is a surface of its own, but the floor's few
 /// points, drawn toward the wall by noise, centre too close to it for
