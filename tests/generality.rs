@@ -2305,3 +2305,32 @@ fn a_trench_wall_a_little_under_a_wheel_radius_still_runs_on_past_the_horizon() 
         }
     }
 }
+
+#[test]
+fn a_diagonal_ramp_over_one_half_rising_out_of_view_across_the_belly_band_is_go() {
+    // The paper's workcase 4 on the default rig: a 24-25° ramp over y ≥ 0 whose toe
+    // line runs at −28° to −35° to the axle rises across the corridor as well as
+    // along it, so where the image's top edge cuts it the belly band's left half stands
+    // 11 cm over the left track's middle: it was taken for an obstacle under the belly
+    // whose top is not seen, `unknown` (`sweep -- workcases 60 6609` #18 and #26).
+    let c = Config::default();
+    for (toe, g, alpha) in [
+        (1.240_730, 24.351_334, -34.807_981),
+        (1.038_455, 25.376_758, -28.386_801),
+    ] {
+        let ramp = || Element::ramp(toe, 0.45, g, alpha, Extent::Left);
+        let [clean, noisy] = analyse_views(vec![ramp()], &c, [None, Some(6_609_018)]);
+        assert_go(&clean, 4, toe, g, Some(alpha));
+        assert_eq!(noisy.decision, Decision::Go, "{:?}", noisy.hazards);
+        assert_eq!(noisy.feature.map(|f| f.workcase), Some(4));
+        // A block under the belly on that ramp, as high as the clearance over it, is
+        // still no go.
+        let block = block_at(1.9, 0.1, 0.2, 0.15, 0.75);
+        let v = analyse(vec![ramp(), block], &c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+    // On flat ground a block under the belly that the image's top edge cuts 12 cm or
+    // more above the tracks is still unknown ground.
+    let v = analyse(vec![block_at(2.45, 0.0, 0.25, 0.25, 0.6)], &c);
+    assert_ne!(v.decision, Decision::Go, "{:?}", v.hazards);
+}

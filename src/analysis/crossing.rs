@@ -1284,7 +1284,7 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
             };
             let kind = if above > clearance {
                 Some(HazardKind::Belly)
-            } else if f.past[c] && above > r && !edge() {
+            } else if f.past[c] && above > r && !edge() && !on_track_surface(f, ix, iy, r) {
                 // Rising out of the image more than a wheel radius above the tracks
                 // beside it, which are seen: an obstacle whose top is not seen. How
                 // tall it is, is not known. (An edge cell may hold the side of a
@@ -1306,6 +1306,44 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
 
 /// Per cell row, each track's median height, `[left, right]`: the median over the
 /// track's strips of `height(cell)` where it is `Some` (NaN where none is).
+/// Whether belly cell (`ix`, `iy`), past the horizon, lies on the surface of the wheel
+/// track on its side carried across: that track's cells seen in row `ix` (below the
+/// horizon, at least [`CROSS_MIN_CELLS`]) lie on one line across the strips (within
+/// rough ground's spread, [`ROUGH_LINE_RMS_M`]), and the cell's top stands no more
+/// than a wheel radius `r` above that line carried to its centre. A ramp under one
+/// side met diagonally rises across the corridor as well as along it: where it
+/// covers the belly band's half too, the band's cells stand above the track's middle
+/// by its cross slope (a 24° ramp over y ≥ 0 whose toe line runs at −35° to the axle
+/// rose 11 cm from the track's middle to the corridor's centre line, and was an
+/// obstacle whose top is not seen: `sweep -- workcases 60 6609` #18, #26). The
+/// surface the rover climbs rising out of view is not one.
+fn on_track_surface(f: &Frame, ix: usize, iy: usize, r: f32) -> bool {
+    let s = f.spec;
+    let y = s.y_centre(iy);
+    let side = if y >= 0.0 {
+        Region::Left
+    } else {
+        Region::Right
+    };
+    let across = || {
+        (0..s.ny)
+            .filter(move |&j| f.region[j] == side)
+            .map(move |j| (j, s.cell(ix, j)))
+            .filter(|&(_, c)| f.seen[c] && !f.past[c])
+            .map(|(j, c)| (s.y_centre(j), f.cells[c].z))
+    };
+    if across().count() < CROSS_MIN_CELLS {
+        return false;
+    }
+    line_fit(across()).is_some_and(|(p, rms)| {
+        rms <= f64::from(ROUGH_LINE_RMS_M)
+            && f64::from(f.cells[s.cell(ix, iy)].top) <= p.z(f64::from(y), 0.0) + f64::from(r)
+    })
+}
+
+/// Fewest seen cells of a track's row for [`on_track_surface`] to carry its line.
+const CROSS_MIN_CELLS: usize = 4;
+
 pub(crate) fn track_medians(
     f: &Frame,
     values: &mut Vec<f32>,
