@@ -492,7 +492,12 @@ pub struct FamilyResult {
 /// rigs (deterministic for `seed`), render each, and analyse it clean and with
 /// Kinect v1 noise.
 pub fn run_families(per_family: usize, seed: u64) -> Result<Vec<FamilyResult>, Error> {
-    sweep_families(&crate::sim::families::Family::ALL, per_family, seed, false)
+    sweep_families(
+        &crate::sim::families::Family::ALL,
+        per_family,
+        seed,
+        Style::Ours,
+    )
 }
 
 /// [`run_families`] over the families of natural ground (rough ground and rocks),
@@ -503,17 +508,41 @@ pub fn run_families_restyled(per_family: usize, seed: u64) -> Result<Vec<FamilyR
         &crate::sim::families::Family::NATURAL,
         per_family,
         seed,
-        true,
+        Style::Restyled,
     )
+}
+
+/// [`run_families`] over the families with bands (one-track ramps and descents,
+/// ground falling away beside a track, a ramp under each track), each band's vertical
+/// sides drawn sloping ([`crate::sim::families::bevelled`]), as a renderer that
+/// interpolates a height map might.
+pub fn run_families_bevelled(per_family: usize, seed: u64) -> Result<Vec<FamilyResult>, Error> {
+    sweep_families(
+        &crate::sim::families::Family::BANDED,
+        per_family,
+        seed,
+        Style::Bevelled,
+    )
+}
+
+/// How [`sweep_families`] draws its scenes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Style {
+    /// As `sim::families` draws them.
+    Ours,
+    /// [`crate::sim::families::restyled`].
+    Restyled,
+    /// [`crate::sim::families::bevelled`].
+    Bevelled,
 }
 
 fn sweep_families(
     families: &[crate::sim::families::Family],
     per_family: usize,
     seed: u64,
-    restyle: bool,
+    how: Style,
 ) -> Result<Vec<FamilyResult>, Error> {
-    use crate::sim::families::{draw, restyled, Rig};
+    use crate::sim::families::{bevelled, draw, restyled, Rig};
     use rand::SeedableRng;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let mut style = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
@@ -528,9 +557,11 @@ fn sweep_families(
                 Rig::default_rig()
             };
             let mut d = draw(&mut rng, family, rig);
-            if restyle {
-                d = restyled(&mut style, d);
-            }
+            d = match how {
+                Style::Ours => d,
+                Style::Restyled => restyled(&mut style, d),
+                Style::Bevelled => bevelled(&mut style, d),
+            };
             let config = d.rig.config.clone();
             let mut pipeline = Pipeline::new(config.clone())?;
             let clean = sim::render(&d.terrain, &config);
@@ -583,6 +614,21 @@ pub fn restyled_report(results: &[FamilyResult], per_family: usize, seed: u64) -
          length, blended by a smoothstep: steeper bumps than the plane waves') and each rock as \
          a cone, a spherical cap, a Gaussian mound or a boulder (a superellipsoid with steep \
          flanks) of the same height and footprint (`sim::families::restyled`).\n"
+    );
+    s + &families_table(results, per_family, seed)
+}
+
+/// The bevelled family sweep ([`run_families_bevelled`]) as a Markdown section.
+pub fn bevelled_report(results: &[FamilyResult], per_family: usize, seed: u64) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "\n## Bands with sloping sides\n");
+    let _ = writeln!(
+        s,
+        "Scenes of the families above whose terrain has bands (a ramp or a descent under one \
+         track, ground falling away beside a track, a ramp under each track), drawn as there \
+         but with each band's vertical sides sloping: the band's height fades linearly over \
+         2-15 cm centred on its edge, as a renderer that samples a height map that far apart \
+         and interpolates draws a vertical face (`sim::families::bevelled`).\n"
     );
     s + &families_table(results, per_family, seed)
 }

@@ -34,6 +34,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         report += &validate::families_report(&swept, families, validate::FAMILY_SEED);
         let restyled = validate::run_families_restyled(families, validate::FAMILY_SEED)?;
         report += &validate::restyled_report(&restyled, families, validate::FAMILY_SEED);
+        let bevelled = validate::run_families_bevelled(families, validate::FAMILY_SEED)?;
+        report += &validate::bevelled_report(&bevelled, families, validate::FAMILY_SEED);
         let drive = validate::run_memory_drive(validate::FAMILY_SEED)?;
         report += &validate::memory_drive_report(&drive, validate::FAMILY_SEED);
     }

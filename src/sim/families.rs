@@ -75,6 +75,16 @@ impl Family {
         Family::RockOnRamp,
     ];
 
+    /// The families whose terrain has bands with vertical sides (a one-track ramp or
+    /// descent, ground falling away beside a track, a ramp under each track): the ones
+    /// [`bevelled`] draws another way.
+    pub const BANDED: [Family; 4] = [
+        Family::OneTrackRamp,
+        Family::HalfPlaneDescent,
+        Family::OneTrackDescent,
+        Family::TwoRamps,
+    ];
+
     /// A short name for reports.
     pub fn name(self) -> &'static str {
         match self {
