@@ -2154,6 +2154,41 @@ fn seen_front_width(
     stripes.len() as f64 * STRIPE_M
 }
 
+/// A descent under the left track only from `toe_x_m` at `gradient_deg` (negative),
+/// `cap_m` deep: a trench with side faces.
+fn left_trench(toe_x_m: f64, gradient_deg: f64, cap_m: f64) -> Element {
+    Element::Ramp {
+        toe_x_m,
+        ref_y_m: 0.45,
+        gradient_deg,
+        alpha_deg: 0.0,
+        extent: LEFT_TRACK,
+        cap_m: Some(cap_m),
+    }
+}
+
+/// A one-track descent on rig `c` is go with `workcase`, clean and with noise `seed`;
+/// blocks on its floor against its outer side face 2.5-2.7 m out (at `y_block`), up to
+/// the ground beside it or above, are not.
+fn descent_goes_but_blocks_on_its_floor_do_not(
+    c: &Config,
+    descent: &Element,
+    workcase: u8,
+    y_block: f64,
+    seed: u64,
+) {
+    for v in analyse_views(vec![descent.clone()], c, [None, Some(seed)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert_eq!(v.feature.map(|f| f.workcase), Some(workcase));
+    }
+    for (x_m, height_m) in [(2.5, 0.45), (2.7, 0.6)] {
+        let block = block_at(x_m, y_block, 0.2, 0.25, height_m);
+        for v in analyse_views(vec![descent.clone(), block], c, [None, Some(seed)]) {
+            assert_ne!(v.decision, Decision::Go, "{height_m} m at {x_m} m");
+        }
+    }
+}
+
 #[test]
 fn a_wall_cut_where_its_lower_band_is_too_sparse_to_be_the_floor_is_no_floor_that_rises() {
     // A 17° descent under the right track only, met at 36°, seen by a D435-like camera
@@ -2177,18 +2212,7 @@ fn a_wall_cut_where_its_lower_band_is_too_sparse_to_be_the_floor_is_no_floor_tha
         ..c.camera
     };
     let descent = Element::ramp(1.177_116, -0.45, -17.060_374, 35.979_487, RIGHT_TRACK);
-    for v in analyse_views(vec![descent.clone()], &c, [None, Some(6_203_066)]) {
-        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
-        assert_eq!(v.feature.map(|f| f.workcase), Some(10));
-    }
-    // A block on that floor against the face, up to the ground beside it or above,
-    // is still an obstacle.
-    for (x_m, height_m) in [(2.5, 0.45), (2.7, 0.6)] {
-        let block = block_at(x_m, -0.55, 0.2, 0.25, height_m);
-        for v in analyse_views(vec![descent.clone(), block], &c, [None, Some(6_203_066)]) {
-            assert_ne!(v.decision, Decision::Go, "{height_m} m at {x_m} m");
-        }
-    }
+    descent_goes_but_blocks_on_its_floor_do_not(&c, &descent, 10, -0.55, 6_203_066);
 }
 
 #[test]
@@ -2204,24 +2228,8 @@ fn a_wall_s_top_is_the_highest_its_cells_show_not_the_last() {
         [-3.788_976_7, 32.269_332_9, -5.504_985_5],
     );
     c.camera.min_range_m = 0.451_556;
-    let descent = Element::Ramp {
-        toe_x_m: 1.271_337,
-        ref_y_m: 0.45,
-        gradient_deg: -10.723_547,
-        alpha_deg: 0.0,
-        extent: LEFT_TRACK,
-        cap_m: Some(0.217_044),
-    };
-    for v in analyse_views(vec![descent.clone()], &c, [None, Some(6_202_003)]) {
-        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
-        assert_eq!(v.feature.map(|f| f.workcase), Some(9));
-    }
-    for (x_m, height_m) in [(2.5, 0.45), (2.7, 0.6)] {
-        let block = block_at(x_m, 0.55, 0.2, 0.25, height_m);
-        for v in analyse_views(vec![descent.clone(), block], &c, [None, Some(6_202_003)]) {
-            assert_ne!(v.decision, Decision::Go, "{height_m} m at {x_m} m");
-        }
-    }
+    let descent = left_trench(1.271_337, -10.723_547, 0.217_044);
+    descent_goes_but_blocks_on_its_floor_do_not(&c, &descent, 9, 0.55, 6_202_003);
 }
 
 #[test]
@@ -2286,24 +2294,12 @@ fn a_trench_wall_a_little_under_a_wheel_radius_still_runs_on_past_the_horizon() 
         ],
     ));
     c.camera.min_range_m = 0.390_986_629_514_18;
-    let descent = Element::Ramp {
-        toe_x_m: 0.972_567_844_058_46,
-        ref_y_m: 0.45,
-        gradient_deg: -8.059_825_433_426_96,
-        alpha_deg: 0.0,
-        extent: LEFT_TRACK,
-        cap_m: Some(0.153_556_853_129_68),
-    };
-    for v in analyse_views(vec![descent.clone()], &c, [None, Some(6_306_025)]) {
-        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
-        assert_eq!(v.feature.map(|f| f.workcase), Some(9));
-    }
-    for (x_m, height_m) in [(2.5, 0.45), (2.7, 0.6)] {
-        let block = block_at(x_m, 0.55, 0.2, 0.25, height_m);
-        for v in analyse_views(vec![descent.clone(), block], &c, [None, Some(6_306_025)]) {
-            assert_ne!(v.decision, Decision::Go, "{height_m} m at {x_m} m");
-        }
-    }
+    let descent = left_trench(
+        0.972_567_844_058_46,
+        -8.059_825_433_426_96,
+        0.153_556_853_129_68,
+    );
+    descent_goes_but_blocks_on_its_floor_do_not(&c, &descent, 9, 0.55, 6_306_025);
 }
 
 #[test]
