@@ -155,9 +155,9 @@ fn main() {
 /// Whether scene `terrain` of `mode`, expected `want` on `config`'s rig, is excused: a
 /// climbable surface the camera meets at grazing incidence somewhere in the tracks (a
 /// descent as steep as the line of sight to it) is not seen there, so any verdict
-/// passes, and go is the analysis' inference. In `families`, `natural` and `bevelled`, for a scene
-/// due go, judged on its planes alone (the far flanks of rough ground's bumps and of
-/// stones face away from the camera too, and excuse nothing).
+/// passes, and go is the analysis' inference. In `families`, `natural` and
+/// `bevelled`, for a scene due go, judged on its planes alone (the far flanks of rough
+/// ground's bumps and of stones face away from the camera too, and excuse nothing).
 fn unseen_at_grazing(mode: &str, want: &Expectation, terrain: &Terrain, config: &Config) -> bool {
     match mode {
         "oblique" => grazing(terrain, config),

@@ -1304,8 +1304,6 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
     }
 }
 
-/// Per cell row, each track's median height, `[left, right]`: the median over the
-/// track's strips of `height(cell)` where it is `Some` (NaN where none is).
 /// Whether belly cell (`ix`, `iy`), past the horizon, lies on the surface of the wheel
 /// track on its side carried across: that track's cells seen in row `ix` (below the
 /// horizon, at least [`CROSS_MIN_CELLS`]) lie on one line across the strips (within
@@ -1344,6 +1342,8 @@ fn on_track_surface(f: &Frame, ix: usize, iy: usize, r: f32) -> bool {
 /// Fewest seen cells of a track's row for [`on_track_surface`] to carry its line.
 const CROSS_MIN_CELLS: usize = 4;
 
+/// Per cell row, each track's median height, `[left, right]`: the median over the
+/// track's strips of `height(cell)` where it is `Some` (NaN where none is).
 pub(crate) fn track_medians(
     f: &Frame,
     values: &mut Vec<f32>,

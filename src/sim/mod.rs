@@ -13,11 +13,10 @@ pub use catalogue::{catalogue, Expectation, Scene, SceneConfig, Tolerance, CLEAN
 pub use noise::{FlyingPixels, KinectNoise};
 pub use terrain::{Element, Extent, HeightField, StoneShape, Terrain, ROUGH_WAVES};
 
+use nalgebra::Vector3;
 use rover_terrain_drivers::DepthFrame;
 
 use crate::config::Config;
-use nalgebra::Vector3;
-
 use crate::projection::Projector;
 
 /// Farthest optical depth the renderer looks, metres (no hit within it = no return).
