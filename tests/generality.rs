@@ -2330,3 +2330,45 @@ fn a_diagonal_ramp_over_one_half_rising_out_of_view_across_the_belly_band_is_go(
     let v = analyse(vec![block_at(2.45, 0.0, 0.25, 0.25, 0.6)], &c);
     assert_ne!(v.decision, Decision::Go, "{:?}", v.hazards);
 }
+
+#[test]
+fn a_one_track_ramp_whose_side_slopes_across_its_edge_strip_is_go_and_a_step_on_it_stops() {
+    // A ramp under one track whose side is drawn sloping over 8-11 cm, as a renderer
+    // that interpolates a height map draws a vertical face (`Extent::Bevelled`): the
+    // track's edge strip spans the side, each of its cells holding one surface that
+    // slopes across it by 20-50 cm. Read from the lower band, the strip jumped 13 cm
+    // to the upper one where the lower band ran short (`sweep -- bevelled 60 904
+    // default 0` #24, a `step` at 1.5 m); past the horizon the cell's top, the side's
+    // high edge, stood 19 cm over the band it had followed (#23, a `step` at 2.2 m).
+    let c = Config::default();
+    for (toe, y, g, alpha, side_m, wc, seed) in [
+        (
+            0.548_021, -0.45, 19.796_973, -1.037_992, 0.085_748, 5, 904_024,
+        ),
+        (
+            1.051_652, 0.45, 22.752_312, -2.275_863, 0.107_471, 3, 904_023,
+        ),
+    ] {
+        let (from_m, to_m) = if y > 0.0 { (0.2, 0.7) } else { (-0.7, -0.2) };
+        let band = Extent::Bevelled {
+            from_m,
+            to_m,
+            side_m,
+        };
+        let ramp = |g| Element::ramp(toe, y, g, alpha, band);
+        let [clean, noisy] = analyse_views(vec![ramp(g)], &c, [None, Some(seed)]);
+        assert_go(&clean, wc, toe, g, None);
+        assert_eq!(noisy.decision, Decision::Go, "{:?}", noisy.hazards);
+        assert_eq!(noisy.feature.map(|f| f.workcase), Some(wc));
+        // Too steep, or with a 15 cm step on it drawn the same way: never go.
+        let v = analyse(vec![ramp(34.0)], &c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        let step = Element::Step {
+            x_m: toe + 0.5,
+            height_m: 0.15,
+            extent: band,
+        };
+        let v = analyse(vec![ramp(g), step], &c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}

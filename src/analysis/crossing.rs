@@ -64,6 +64,9 @@ pub fn steps_and_slopes(
             // 6202 random` #3: 0 and −2.7 cm on a wall whose top is at 0, and the
             // next cut cell's 0 no longer on it made a 20 cm `step`).
             let mut wall: Option<[f32; 3]> = None;
+            // Whether the strip read the last seen cell's mean height: its one
+            // surface sloped across the strip ([`slopes_across`]).
+            let mut sloped = false;
             for ix in 0..f.spec.nx {
                 let c = f.spec.cell(ix, iy);
                 if !f.seen[c] {
@@ -90,13 +93,29 @@ pub fn steps_and_slopes(
                 // Past the horizon, only the fringe of the wall seen before.
                 let fringe =
                     past && along.is_none() && wall_goes_on(cell, wall, f.spec.y_centre(iy), vs);
-                let z = if let Some(z) = along {
+                // A surface sloping across the strip (a ramp's side drawn sloping, in
+                // the track's edge strip) has no upper and lower surface to choose
+                // from: its bands are parts of one slope, and which of them continues
+                // the strip changes with the share of points each holds. Its mean is
+                // the ground on the strip's centre line. Read from its bands, the
+                // strip jumped 13 cm where the lower band ran short (`sweep --
+                // bevelled 60 904 default 0` #24, a `step`).
+                let mut across = !past && slopes_across(cell, f.spec.y_centre(iy), vs);
+                let z = if across {
+                    cell.z
+                } else if let Some(z) = along {
                     // Past the horizon a lower bound: beside such a face the top is
                     // the face's, and the bound the ground's.
                     z
                 } else if past {
                     if fringe {
                         floor_beside_fringe(cell)
+                    } else if sloped {
+                        // Where the strip read the mean up to the horizon, the mean
+                        // of what is seen of the cell past it: its top is the slope's
+                        // high side, which stood 19 cm over the strip and made a
+                        // `step` (#23, #54).
+                        cell.z
                     } else {
                         cell.top.max(cell.z)
                     }
@@ -104,10 +123,22 @@ pub fn steps_and_slopes(
                     // Of a cell's two surfaces, the one that continues the strip
                     // (its last height carried on at its slope, up to passable).
                     let near = carried.unwrap_or(cell.foot);
-                    if (cell.crest - near).abs() <= (cell.foot - near).abs() {
+                    let surface = if (cell.crest - near).abs() <= (cell.foot - near).abs() {
                         cell.crest
                     } else {
                         cell.foot
+                    };
+                    // Or, where the strip read the last cell's mean, this one's mean
+                    // when it continues the strip better: a sloping side's cells do
+                    // not all pass `slopes_across` (noise and the voxel layers move
+                    // their bands), and a strip switching between means and bands
+                    // jumps by 4-5 cm (#78 of `bevelled 100 901 default 9`, a
+                    // `slope`).
+                    across = sloped && (cell.z - near).abs() < (surface - near).abs();
+                    if across {
+                        cell.z
+                    } else {
+                        surface
                     }
                 };
                 if !past && spilled(f, ix, iy, z, carried, r) {
@@ -126,6 +157,9 @@ pub fn steps_and_slopes(
                     }
                     _ => None,
                 };
+                if !past {
+                    sloped = across;
+                }
                 last = [last[1], Some((cell.x, z))];
                 strip.push(StripCell {
                     x: cell.x,
@@ -896,6 +930,47 @@ fn hugs_one_side(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> bool {
         && off_y >= FACE_OFF_VOXELS * vs
         && (cell.x - x_mid).abs() <= 0.5 * FACE_OFF_VOXELS * vs
 }
+
+/// Whether a cell holds one surface sloping across its strip, not two surfaces with a
+/// face between: its points span more than [`FACE_MIN_M`], spread evenly across the
+/// cell (their mean within [`SPREAD_OFF_VOXELS`] of the strip's centre line `y_mid`:
+/// a face's points pull it toward the cell's side) and over their span (their mean
+/// height within [`SPREAD_MID_SHARE`] of its middle: a flat surface beside a face
+/// pulls it toward that surface); its upper and lower bands centre on opposite sides
+/// of the points' mean, apart more sideways than forward (a face across the strip
+/// parts them forward) by at least [`SIDE_MIN_VOXELS`]; or, when only one band holds
+/// a surface, its top voxel lies to one side by half [`FACE_OFF_VOXELS`]. The cell's
+/// mean height is then the ground's on the strip's centre line (exact for a plane).
+fn slopes_across(cell: &Cell, y_mid: f32, vs: f32) -> bool {
+    let span = cell.top - cell.low;
+    if span < FACE_MIN_M
+        || (cell.y - y_mid).abs() > SPREAD_OFF_VOXELS * vs
+        || (cell.z - 0.5 * (cell.top + cell.low)).abs() > SPREAD_MID_SHARE * span
+    {
+        return false;
+    }
+    if cell.crest == cell.foot {
+        return (cell.top_xy[1] - cell.y).abs() >= 0.5 * FACE_OFF_VOXELS * vs;
+    }
+    let (dx, dy) = (
+        cell.crest_xy[0] - cell.foot_xy[0],
+        cell.crest_xy[1] - cell.foot_xy[1],
+    );
+    (cell.crest_xy[1] - cell.y) * (cell.foot_xy[1] - cell.y) < 0.0
+        && dy.abs() > dx.abs()
+        && dy.abs() >= SIDE_MIN_VOXELS * vs
+}
+
+/// Most sideways offset of the mean of a cell's points from the strip's centre line
+/// for [`slopes_across`], voxels: a ramp's sloping side put it within 0.1 of a voxel,
+/// a vertical side's points beside the ramp's top 0.13-0.3 (`sweep -- families 100
+/// 5501 random` #99 and #97; where they pull it less, the height test tells).
+const SPREAD_OFF_VOXELS: f32 = 0.15;
+/// Most offset of a cell's mean height from the middle of its span for
+/// [`slopes_across`], a share of the span: up to 0.13 on a ramp's sloping side (the
+/// voxel layers move its top and low), 0.23-0.33 on a ramp's top beside its vertical
+/// side (#97, #99).
+const SPREAD_MID_SHARE: f32 = 0.2;
 
 /// Least height between a cell's two surfaces for [`ground_beside_face`] to tell
 /// them apart, metres: above rough ground's spread within one cell.
@@ -1810,6 +1885,37 @@ mod tests {
 
     const VS: f32 = 0.05;
     const MID: f32 = 0.675;
+
+    #[test]
+    fn a_cell_whose_one_surface_slopes_across_reads_its_mean_but_a_face_beside_ground_does_not() {
+        // A ramp's side sloping across the cell, 0.5 to 0.95 of its 39 cm height over
+        // its width (`sweep -- bevelled 60 904 default 0` #24, 1.525 m): the points
+        // spread evenly, the bands lie either side of the middle.
+        let mut c = cell(0.331, [1.026, MID - 0.014], 0.214, [1.024, MID + 0.016]);
+        (c.z, c.top, c.low, c.top_xy) = (0.274, 0.354, 0.187, [1.038, MID - 0.020]);
+        assert!(slopes_across(&c, MID, VS));
+        // The same with too few points in its lower band for a surface: one band.
+        let mut one = c;
+        (one.foot, one.foot_xy) = (one.crest, one.crest_xy);
+        assert!(slopes_across(&one, MID, VS));
+        // The mean pulled toward the top: a flat surface with a vertical face's points
+        // beside it (the ramp's top and its sharp side, `families 100 5501 random` #97).
+        let mut face = one;
+        (face.z, face.low) = (0.325, 0.03);
+        assert!(!slopes_across(&face, MID, VS));
+        // The points' mean off the middle: a face hugging the cell's side.
+        let mut hug = c;
+        hug.y = MID + 0.01;
+        assert!(!slopes_across(&hug, MID, VS));
+        // The bands apart forward rather than sideways: a face across the strip.
+        let mut step = c;
+        (step.crest_xy, step.foot_xy) = ([1.045, MID - 0.005], [1.005, MID + 0.005]);
+        assert!(!slopes_across(&step, MID, VS));
+        // Within rough ground's spread: no slope to read.
+        let mut flat = c;
+        flat.top = flat.low + 0.03;
+        assert!(!slopes_across(&flat, MID, VS));
+    }
 
     /// A strip of seen cells 5 cm apart at heights `z`.
     fn strip(z: &[f32]) -> Vec<StripCell> {

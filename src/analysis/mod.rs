@@ -48,8 +48,8 @@ pub(crate) struct StripCell {
     /// Mean x of the cell's points, metres.
     pub x: f32,
     /// The cell's height, metres: the one of its surfaces (crest or foot) that
-    /// continues the strip, or for a cell past the horizon its top (a lower bound on
-    /// what stands there).
+    /// continues the strip, its mean where its one surface slopes across the strip,
+    /// or for a cell past the horizon its top (a lower bound on what stands there).
     pub z: f32,
     /// Cell row.
     pub ix: usize,
