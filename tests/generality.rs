@@ -2372,3 +2372,54 @@ fn a_one_track_ramp_whose_side_slopes_across_its_edge_strip_is_go_and_a_step_on_
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
     }
 }
+
+#[test]
+fn ground_falling_away_beside_a_track_over_a_sloping_edge_is_go_and_a_drop_beyond_stops() {
+    // Ground falling away beyond a track's inner edge, the edge drawn sloping over
+    // 10-13 cm (`Extent::Bevelled`): the belly band's edge strip holds the slope's
+    // upper half, 70° across the strip 2.7 m out, which the camera meets at 2°, and
+    // past there its cells get no points. Continued along the strip, the ground
+    // would be in view: a `drop_off` (noisy, `unknown`) under the belly (`sweep --
+    // bevelled 60 910 default 2` #0 and #19).
+    let c = Config::default();
+    for (toe, y, g, (from_m, to_m), side_m, wc, seed) in [
+        (
+            1.141_971,
+            -0.45,
+            -13.322_526,
+            (-100.0, -0.2),
+            0.130_886,
+            10,
+            910_000,
+        ),
+        (
+            1.195_472,
+            0.45,
+            -14.285_868,
+            (0.2, 100.0),
+            0.096_249,
+            9,
+            910_019,
+        ),
+    ] {
+        let edge = Extent::Bevelled {
+            from_m,
+            to_m,
+            side_m,
+        };
+        let descent = |g| Element::ramp(toe, y, g, 0.0, edge);
+        let [clean, noisy] = analyse_views(vec![descent(g)], &c, [None, Some(seed)]);
+        assert_go(&clean, wc, toe, g, None);
+        assert_eq!(noisy.decision, Decision::Go, "{:?}", noisy.hazards);
+        assert_eq!(noisy.feature.map(|f| f.workcase), Some(wc));
+        // Too steep, or a 30 cm drop across the corridor beyond: never go.
+        let v = analyse(vec![descent(-34.0)], &c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        let drop = Element::DropOff {
+            x_m: 2.2,
+            depth_m: 0.3,
+        };
+        let v = analyse(vec![descent(g), drop], &c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}

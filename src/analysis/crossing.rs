@@ -2,6 +2,8 @@
 //! in the wheel tracks, anything too tall under the belly, and ground that should be
 //! seen but is not (gaps, drop-offs).
 
+use nalgebra::Vector3;
+
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region, StripCell};
 use crate::grid::Cell;
@@ -1669,6 +1671,47 @@ const BUMP_RMS: f32 = 8.0;
 /// Fewest recent cells, over at least half a metre, to judge the ground's roughness.
 const ROUGH_MIN_CELLS: usize = 8;
 
+/// Whether cell (ix, iy), unseen, lies on ground that falls away across its strip
+/// so steeply that the camera meets it at under [`GRAZING_DEG`] (or it faces away):
+/// between the nearest seen cells of its row within [`ACROSS_STRIPS`] on either side,
+/// one [`ACROSS_DROP_M`] or more below the other, the ground taken as the line between
+/// their heights across, and sloping `k` along the strip.
+/// The edge of ground falling away beside a track, drawn sloping over 8-14 cm: the
+/// belly band's edge strip holds the slope's upper half, 70° across, and past 2.7 m
+/// its cells get no points (`sweep -- bevelled 60 910 default 2` #0, a `drop_off`).
+fn grazing_across(f: &Frame, ix: usize, iy: usize, k: f32) -> bool {
+    let s = f.spec;
+    let seen_at = |jy: usize| {
+        let c = s.cell(ix, jy);
+        f.seen[c].then(|| (s.y_centre(jy), f.cells[c].z))
+    };
+    let below = (1..=ACROSS_STRIPS)
+        .filter_map(|d| iy.checked_sub(d))
+        .find_map(seen_at);
+    let above = (1..=ACROSS_STRIPS)
+        .map(|d| iy + d)
+        .take_while(|&jy| jy < s.ny)
+        .find_map(seen_at);
+    let (Some((ya, za)), Some((yb, zb))) = (below, above) else {
+        return false;
+    };
+    if (za - zb).abs() < ACROSS_DROP_M {
+        return false;
+    }
+    let ky = (zb - za) / (yb - ya);
+    let (x, y) = (s.x_centre(ix), s.y_centre(iy));
+    let z = za + ky * (y - ya);
+    let c = f.camera;
+    let normal = Vector3::new(-k, -ky, 1.0).normalize();
+    let to_camera = Vector3::new(c[0] - x, c[1] - y, c[2] - z).normalize();
+    normal.dot(&to_camera).asin() < GRAZING_DEG.to_radians()
+}
+
+/// How many strips to either side [`grazing_across`] looks for seen ground.
+const ACROSS_STRIPS: usize = 3;
+/// Least fall across between those seen cells for [`grazing_across`], metres.
+const ACROSS_DROP_M: f32 = 0.1;
+
 /// What the unseen run of cells `start..end` in strip `iy` is, given the two seen
 /// cells before it and the first seen cell after it (x, z).
 #[allow(clippy::too_many_arguments)]
@@ -1715,6 +1758,9 @@ fn judge_gap(
         return None;
     }
     let bumps = || bump_shadow(f, iy, start, end, before);
+    // On ground falling away across the strip, met as grazingly; not where the ground
+    // beyond is seen a wheel radius down (a drop proven, below).
+    let across = || unseen.clone().all(|j| grazing_across(f, j, iy, k));
     // Seen beside the strip where the camera's rows fall too sparsely to give every
     // cell points.
     let sampled_out = || {
@@ -1737,7 +1783,7 @@ fn judge_gap(
                     .all(|j| super::visibility::explained(f, j, iy, z(s.x_centre(j))))
             };
             let hidden = hidden_at(&predicted) || on_line.is_some_and(|z| hidden_at(&z));
-            (!hidden && !bumps() && !sampled_out()).then_some(HazardKind::DropOff)
+            (!hidden && !bumps() && !sampled_out() && !across()).then_some(HazardKind::DropOff)
         }
         Some((xa, za)) if za < zb - r && za < predicted(xa) - r && below_line(xa, za) => {
             Some(HazardKind::DropOff)
@@ -1746,7 +1792,8 @@ fn judge_gap(
             let all_shadowed = unseen
                 .clone()
                 .all(|j| super::visibility::explained(f, j, iy, za));
-            (!all_shadowed && !bumps() && !sampled_out()).then_some(HazardKind::Unknown)
+            (!all_shadowed && !bumps() && !sampled_out() && !across())
+                .then_some(HazardKind::Unknown)
         }
     }
 }
