@@ -61,6 +61,12 @@ impl GridSpec {
         ix * self.ny + iy
     }
 
+    /// The strip (iy) of ground cell index `c`, the inverse of [`GridSpec::cell`]'s.
+    #[inline]
+    pub fn strip_of(&self, c: usize) -> usize {
+        c % self.ny
+    }
+
     /// Centre x of cells in row ix, metres.
     #[inline]
     pub fn x_centre(&self, ix: usize) -> f32 {
@@ -853,6 +859,9 @@ mod tests {
         assert_eq!(s.cell_at(2.99, 0.69), Some((59, 27)));
         assert_eq!(s.cell_at(3.01, 0.0), None);
         assert!((s.y_centre(14) - 0.025).abs() < 1e-6);
+        for (ix, iy) in [(0, 0), (0, 27), (59, 0), (31, 13)] {
+            assert_eq!(s.strip_of(s.cell(ix, iy)), iy);
+        }
     }
 
     #[test]

@@ -1441,7 +1441,7 @@ pub(crate) fn track_medians(
 
 /// The median of `values` (reordered in place: a selection, not a sort; it runs
 /// for every row of both tracks); NaN when empty.
-fn median(values: &mut [f32]) -> f32 {
+pub(crate) fn median(values: &mut [f32]) -> f32 {
     let n = values.len();
     if n == 0 {
         return f32::NAN;
@@ -1671,15 +1671,52 @@ const BUMP_RMS: f32 = 8.0;
 /// Fewest recent cells, over at least half a metre, to judge the ground's roughness.
 const ROUGH_MIN_CELLS: usize = 8;
 
-/// Whether cell (ix, iy), unseen, lies on ground that falls away across its strip
-/// so steeply that the camera meets it at under [`GRAZING_DEG`] (or it faces away):
-/// between the nearest seen cells of its row within [`ACROSS_STRIPS`] on either side,
-/// one [`ACROSS_DROP_M`] or more below the other, the ground taken as the line between
-/// their heights across, and sloping `k` along the strip.
+/// Whether the unseen cells `unseen` of strip `iy` lie on ground that falls away
+/// across the strip so steeply that the camera meets it at under [`GRAZING_DEG`] (or
+/// it faces away). In each cell's row the ground is taken as the line between the
+/// nearest seen cells within [`ACROSS_STRIPS`] on either side ([`across_row`]), one
+/// [`ACROSS_DROP_M`] or more below the other, sloping `k` along the strip; and the
+/// strip's own last seen ground before them, `last` (row, height in metres), must lie
+/// on such a fall in its row, off its foot by [`ACROSS_OFF_FOOT_SHARE`] of it: on
+/// the slope or at its top, where the ground falls away beside the strip. At the foot
+/// of a wall beside the strip, the shadow test judges what the wall hides.
+///
 /// The edge of ground falling away beside a track, drawn sloping over 8-14 cm: the
 /// belly band's edge strip holds the slope's upper half, 70° across, and past 2.7 m
 /// its cells get no points (`sweep -- bevelled 60 910 default 2` #0, a `drop_off`).
-fn grazing_across(f: &Frame, ix: usize, iy: usize, k: f32) -> bool {
+/// A pit in a trench's floor along the strip beside the belly band lies between the
+/// belly's ground and the floor too, but the strip before it is on the floor, at the
+/// foot (`belly_ground_spilled_into_a_tracks_edge_strip_ends_no_gap`).
+fn grazing_across(
+    f: &Frame,
+    iy: usize,
+    mut unseen: impl Iterator<Item = usize>,
+    k: f32,
+    (last_ix, last_z): (usize, f32),
+) -> bool {
+    let off_foot = across_row(f, last_ix, iy).is_some_and(|((_, za), (_, zb))| {
+        last_z - za.min(zb) >= ACROSS_OFF_FOOT_SHARE * (za - zb).abs()
+    });
+    let s = f.spec;
+    let c = f.camera;
+    off_foot
+        && unseen.all(|ix| {
+            let Some(((ya, za), (yb, zb))) = across_row(f, ix, iy) else {
+                return false;
+            };
+            let ky = (zb - za) / (yb - ya);
+            let (x, y) = (s.x_centre(ix), s.y_centre(iy));
+            let z = za + ky * (y - ya);
+            let normal = Vector3::new(-k, -ky, 1.0).normalize();
+            let to_camera = Vector3::new(c[0] - x, c[1] - y, c[2] - z).normalize();
+            normal.dot(&to_camera).asin() < GRAZING_DEG.to_radians()
+        })
+}
+
+/// The nearest seen cells of row `ix` within [`ACROSS_STRIPS`] of strip `iy` on
+/// either side, (y, mean height) in metres, when one stands [`ACROSS_DROP_M`] or more
+/// above the other.
+fn across_row(f: &Frame, ix: usize, iy: usize) -> Option<((f32, f32), (f32, f32))> {
     let s = f.spec;
     let seen_at = |jy: usize| {
         let c = s.cell(ix, jy);
@@ -1687,30 +1724,21 @@ fn grazing_across(f: &Frame, ix: usize, iy: usize, k: f32) -> bool {
     };
     let below = (1..=ACROSS_STRIPS)
         .filter_map(|d| iy.checked_sub(d))
-        .find_map(seen_at);
+        .find_map(seen_at)?;
     let above = (1..=ACROSS_STRIPS)
         .map(|d| iy + d)
         .take_while(|&jy| jy < s.ny)
-        .find_map(seen_at);
-    let (Some((ya, za)), Some((yb, zb))) = (below, above) else {
-        return false;
-    };
-    if (za - zb).abs() < ACROSS_DROP_M {
-        return false;
-    }
-    let ky = (zb - za) / (yb - ya);
-    let (x, y) = (s.x_centre(ix), s.y_centre(iy));
-    let z = za + ky * (y - ya);
-    let c = f.camera;
-    let normal = Vector3::new(-k, -ky, 1.0).normalize();
-    let to_camera = Vector3::new(c[0] - x, c[1] - y, c[2] - z).normalize();
-    normal.dot(&to_camera).asin() < GRAZING_DEG.to_radians()
+        .find_map(seen_at)?;
+    ((below.1 - above.1).abs() >= ACROSS_DROP_M).then_some((below, above))
 }
 
 /// How many strips to either side [`grazing_across`] looks for seen ground.
 const ACROSS_STRIPS: usize = 3;
 /// Least fall across between those seen cells for [`grazing_across`], metres.
 const ACROSS_DROP_M: f32 = 0.1;
+/// Least share of the fall across that the strip's last seen ground stands over its
+/// foot for [`grazing_across`].
+const ACROSS_OFF_FOOT_SHARE: f32 = 0.1;
 
 /// What the unseen run of cells `start..end` in strip `iy` is, given the two seen
 /// cells before it and the first seen cell after it (x, z).
@@ -1760,7 +1788,8 @@ fn judge_gap(
     let bumps = || bump_shadow(f, iy, start, end, before);
     // On ground falling away across the strip, met as grazingly; not where the ground
     // beyond is seen a wheel radius down (a drop proven, below).
-    let across = || unseen.clone().all(|j| grazing_across(f, j, iy, k));
+    let last_ix = s.cell_at(xb, s.y_centre(iy)).map_or(start, |(ix, _)| ix);
+    let across = || grazing_across(f, iy, unseen.clone(), k, (last_ix, zb));
     // Seen beside the strip where the camera's rows fall too sparsely to give every
     // cell points.
     let sampled_out = || {

@@ -11,14 +11,16 @@
 //!    face along their strip whose ground cannot be told are left out), iteratively: cells off the plane by three standard deviations (the smaller of
 //!    the RMS's and the median residual's estimate: the crest, a plateau, a wall's
 //!    points along a band edge) and cells that straddle the toe line are dropped,
-//!    then the fit is extended to every consistent cell of the affected strips.
+//!    as are whole strips whose cells lie off it together (a band's sloping side in a
+//!    track's edge strip), then the fit is extended to every consistent cell of the
+//!    affected strips.
 //! 4. The toe line is where the face meets the ground plane z = 0: its distance is
 //!    read at the centre line (both tracks) or the affected track's centre; the
 //!    gradient is the plane's steepest slope; alpha is `atan(b/a)`, positive when
 //!    the toe line's left end is nearer. A face too steep to fit as a plane (a low
 //!    step) is measured from the onsets, with a gradient of ±90°.
 
-use super::crossing::{ground_beside_face, unresolved_face_along};
+use super::crossing::{ground_beside_face, median, unresolved_face_along};
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region};
 use crate::grid::{Cell, GridSpec};
@@ -182,6 +184,7 @@ fn fit_face(
         }
     }
     sel.on.fill(false);
+    sel.off_strip.fill(false);
     for (iy, o) in strips() {
         let end = window_end(iy, o);
         for ix in o.ix..=end.min(s.nx - 1) {
@@ -195,6 +198,9 @@ fn fit_face(
         let Some((p, tol)) = weighted_plane(f, g, sel, iteration) else {
             break;
         };
+        if iteration >= 1 {
+            sel.reject_strips(f, g, &p);
+        }
         let mut changed = false;
         for (iy, o) in strips() {
             let end = window_end(iy, o);
@@ -210,7 +216,10 @@ fn fit_face(
                 }
                 let cell = &f.cells[c];
                 let r = f64::from(g.z[c]) - p.z(f64::from(cell.x), f64::from(cell.y));
-                let ok = r.abs() <= tol && past_toe(&p, ix, iy) && (iteration >= 2 || ix <= end);
+                let ok = !sel.off_strip[iy]
+                    && r.abs() <= tol
+                    && past_toe(&p, ix, iy)
+                    && (iteration >= 2 || ix <= end);
                 if ok != sel.on[c] {
                     sel.on[c] = ok;
                     changed = true;
@@ -349,6 +358,14 @@ const SAME_FACE_F: f64 = 30.0 * 16.0;
 /// millimetres).
 const FACE_NOISE_M: f64 = 0.003;
 
+/// How many spreads of the strips' mean residuals off their median leave a strip out
+/// of the face fit ([`Selection::reject_strips`]).
+const STRIP_OFF_MADS: f32 = 4.0;
+/// Least taken cells for [`Selection::reject_strips`] to judge a strip.
+const STRIP_MIN_CELLS: usize = 3;
+/// Least strips judged for [`Selection::reject_strips`] to leave any out.
+const STRIPS_JUDGED: usize = 4;
+
 /// The feature analysis's buffers, sized for the grid and reused every frame.
 #[derive(Debug, Clone)]
 pub(crate) struct Scratch {
@@ -367,6 +384,9 @@ impl Scratch {
             selection: Selection {
                 eligible: Vec::with_capacity(cells),
                 on: vec![false; cells],
+                off_strip: vec![false; spec.ny],
+                strip_sums: vec![(0.0, 0); spec.ny],
+                means: Vec::with_capacity(spec.ny),
             },
             z: vec![0.0; cells],
             usable: vec![false; cells],
@@ -382,9 +402,60 @@ struct Selection {
     eligible: Vec<u32>,
     /// Per cell, whether the fit takes it.
     on: Vec<bool>,
+    /// Per strip, whether the fit leaves it out: its cells lie off the face together
+    /// ([`Selection::reject_strips`]).
+    off_strip: Vec<bool>,
+    /// Per strip, the sum of its taken cells' residuals (metres) and their count.
+    strip_sums: Vec<(f64, u32)>,
+    /// The strips' mean residuals, for their median (capacity: the strip count).
+    means: Vec<f32>,
 }
 
 impl Selection {
+    /// Mark the strips whose taken cells lie off plane `p` together: their mean
+    /// residual off the strips' median by more than [`STRIP_OFF_MADS`] times the
+    /// spread of the strips' means (their median absolute deviation, scaled to a
+    /// standard deviation), and at least [`MIN_TOLERANCE_M`]. Only strips with
+    /// [`STRIP_MIN_CELLS`] taken cells are judged, and only when [`STRIPS_JUDGED`] are;
+    /// a strip with fewer keeps its mark.
+    ///
+    /// A track's edge strip beside a band's sloping side holds its means, a share of
+    /// the band's height: taken, two such strips of a capped one-track descent pulled
+    /// the face 2-5° shallower and widened its tolerance until the fit ran on into the
+    /// floor past the cap (`sweep -- bevelled 60 909 default 3`).
+    fn reject_strips(&mut self, f: &Frame, g: &Ground, p: &Plane) {
+        self.strip_sums.fill((0.0, 0));
+        for &c in &self.eligible {
+            let c = c as usize;
+            if self.on[c] {
+                let cell = &f.cells[c];
+                let r = f64::from(g.z[c]) - p.z(f64::from(cell.x), f64::from(cell.y));
+                let sum = &mut self.strip_sums[f.spec.strip_of(c)];
+                *sum = (sum.0 + r, sum.1 + 1);
+            }
+        }
+        let mean = |(sum, n): (f64, u32)| {
+            (n as usize >= STRIP_MIN_CELLS).then(|| (sum / f64::from(n)) as f32)
+        };
+        self.means.clear();
+        self.means
+            .extend(self.strip_sums.iter().filter_map(|&s| mean(s)));
+        if self.means.len() < STRIPS_JUDGED {
+            return;
+        }
+        let middle = median(&mut self.means);
+        for m in &mut self.means {
+            *m = (*m - middle).abs();
+        }
+        let spread = 1.4826 * median(&mut self.means);
+        let limit = (MIN_TOLERANCE_M as f32).max(STRIP_OFF_MADS * spread);
+        for (off, &s) in self.off_strip.iter_mut().zip(&self.strip_sums) {
+            if let Some(m) = mean(s) {
+                *off = (m - middle).abs() > limit;
+            }
+        }
+    }
+
     /// The cells taken, in cell order (the order the fit's sums run in).
     fn taken<'a>(&'a self, f: &'a Frame) -> impl Iterator<Item = (usize, &'a Cell)> + 'a {
         self.eligible
