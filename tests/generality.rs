@@ -2473,3 +2473,65 @@ fn a_capped_one_track_descent_with_sloping_sides_is_measured_from_its_own_strips
         assert_noisy_go(&noisy, wc, toe, g);
     }
 }
+
+#[test]
+fn the_impassable_versions_with_sloping_sides_are_never_go() {
+    // The impassable band scenes with their sides drawn sloping (`Extent::Bevelled`,
+    // 3-14 cm), on the default rig and a Kinect v2 mounted high and rolled: the mean
+    // reading of the edge strips, the gap excuse on ground falling away across a
+    // strip and the face fit's strip rejection must not turn any of them into a go.
+    let rigs = [
+        Config::default(),
+        kinect_v2(mounted([0.1, 0.05, 1.1], [6.0, 38.0, -4.0])),
+    ];
+    let sides = [0.03, 0.08, 0.14];
+    for c in &rigs {
+        for side_m in sides {
+            let band = |from_m, to_m| Extent::Bevelled {
+                from_m,
+                to_m,
+                side_m,
+            };
+            let scenes = [
+                vec![Element::ramp(1.2, 0.45, 35.0, 0.0, band(0.2, 0.7))],
+                vec![Element::ramp(1.1, -0.45, 33.0, 20.0, band(-0.7, -0.2))],
+                vec![Element::Step {
+                    x_m: 1.4,
+                    height_m: 0.15,
+                    extent: band(-0.7, -0.2),
+                }],
+                vec![Element::Step {
+                    x_m: 1.5,
+                    height_m: -0.5,
+                    extent: band(0.2, 50.0),
+                }],
+                vec![Element::Step {
+                    x_m: 1.3,
+                    height_m: -0.3,
+                    extent: band(-0.7, -0.2),
+                }],
+                vec![Element::ramp(1.2, -0.45, -40.0, 0.0, band(-50.0, -0.2))],
+                vec![Element::ramp(1.0, 0.45, -38.0, 0.0, band(0.2, 0.7)).capped(Some(0.3))],
+                // A climbable one-track ramp with a 15 cm step on it.
+                vec![
+                    Element::ramp(0.9, 0.45, 18.0, 0.0, band(0.2, 0.7)),
+                    Element::Step {
+                        x_m: 1.6,
+                        height_m: 0.15,
+                        extent: band(0.2, 0.7),
+                    },
+                ],
+            ];
+            for elements in scenes {
+                let v = analyse(elements.clone(), c);
+                assert_ne!(
+                    v.decision,
+                    Decision::Go,
+                    "{elements:?} on {:?}: {:?}",
+                    c.mount,
+                    v.feature
+                );
+            }
+        }
+    }
+}
