@@ -40,7 +40,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rover_terrain::analysis::GRAZING_DEG;
 use rover_terrain::sim::{
-    self, families, random, Element, Expectation, Extent, KinectNoise, Terrain, Tolerance,
+    self, families, random, Element, Expectation, KinectNoise, Terrain, Tolerance,
 };
 use rover_terrain::validate::{compare, CLEAN, NOISY};
 use rover_terrain::{Config, Decision, Pipeline};
@@ -209,9 +209,7 @@ fn planes_of(terrain: &Terrain) -> Terrain {
             .cloned()
             .map(|mut e| {
                 if let Element::Ramp { extent, .. } | Element::Step { extent, .. } = &mut e {
-                    if let Extent::Bevelled { from_m, to_m, .. } = *extent {
-                        *extent = Extent::Band { from_m, to_m };
-                    }
+                    *extent = extent.sharp();
                 }
                 e
             })

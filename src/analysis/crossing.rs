@@ -77,21 +77,7 @@ pub fn steps_and_slopes(
                 let cell = &f.cells[c];
                 let past = f.past[c];
                 let carried = continued(last, cell.x, tan_max);
-                // Beside a face along the strip (a trench's wall), the cell's ground;
-                // in a cell seen whole, also where its two surfaces do not say which.
-                let beside = ground_beside_face(cell, f.spec.y_centre(iy), vs);
-                let along = if past {
-                    beside
-                } else {
-                    beside.or_else(|| {
-                        unresolved_ground(
-                            cell,
-                            (f.spec.x_centre(ix), f.spec.y_centre(iy)),
-                            vs,
-                            f.camera[1],
-                        )
-                    })
-                };
+                let along = ground_along(f, ix, iy, past);
                 // Past the horizon, only the fringe of the wall seen before.
                 let fringe =
                     past && along.is_none() && wall_goes_on(cell, wall, f.spec.y_centre(iy), vs);
@@ -122,26 +108,9 @@ pub fn steps_and_slopes(
                         cell.top.max(cell.z)
                     }
                 } else {
-                    // Of a cell's two surfaces, the one that continues the strip
-                    // (its last height carried on at its slope, up to passable).
-                    let near = carried.unwrap_or(cell.foot);
-                    let surface = if (cell.crest - near).abs() <= (cell.foot - near).abs() {
-                        cell.crest
-                    } else {
-                        cell.foot
-                    };
-                    // Or, where the strip read the last cell's mean, this one's mean
-                    // when it continues the strip better: a sloping side's cells do
-                    // not all pass `slopes_across` (noise and the voxel layers move
-                    // their bands), and a strip switching between means and bands
-                    // jumps by 4-5 cm (#78 of `bevelled 100 901 default 9`, a
-                    // `slope`).
-                    across = sloped && (cell.z - near).abs() < (surface - near).abs();
-                    if across {
-                        cell.z
-                    } else {
-                        surface
-                    }
+                    let (z, mean) = continuing(cell, carried, sloped);
+                    across = mean;
+                    z
                 };
                 if !past && spilled(f, ix, iy, z, carried, r) {
                     // The belly band's ground, not this strip's: leave the cell out.
@@ -175,6 +144,43 @@ pub fn steps_and_slopes(
             let min_gap = f.cfg.analysis.gap_min_cells as usize;
             strip_hazards(strip, region, (r, tan_max, wheelbase, min_gap), vs, verdict);
         }
+    }
+}
+
+/// The ground of seen cell (`ix`, `iy`) beside a face along its strip (a trench's
+/// wall, [`ground_beside_face`]), metres; in a cell seen whole, not `past` the
+/// horizon, also where its two surfaces do not say which ([`unresolved_ground`]).
+fn ground_along(f: &Frame, ix: usize, iy: usize, past: bool) -> Option<f32> {
+    let (cell, vs, y_mid) = (
+        &f.cells[f.spec.cell(ix, iy)],
+        f.spec.voxel_m,
+        f.spec.y_centre(iy),
+    );
+    let beside = ground_beside_face(cell, y_mid, vs);
+    if past {
+        return beside;
+    }
+    beside.or_else(|| unresolved_ground(cell, (f.spec.x_centre(ix), y_mid), vs, f.camera[1]))
+}
+
+/// Of a seen cell's two surfaces, the one that continues the strip (its last height
+/// carried on at its slope, up to passable, `carried`), metres; or, where the strip
+/// read the last cell's mean (`sloped`), this one's mean when it continues the strip
+/// better. Also whether the mean was read. A sloping side's cells do not all pass
+/// [`slopes_across`] (noise and the voxel layers move their bands), and a strip
+/// switching between means and bands jumps by 4-5 cm (#78 of `sweep -- bevelled 100
+/// 901 default 9`, a `slope`).
+fn continuing(cell: &Cell, carried: Option<f32>, sloped: bool) -> (f32, bool) {
+    let near = carried.unwrap_or(cell.foot);
+    let surface = if (cell.crest - near).abs() <= (cell.foot - near).abs() {
+        cell.crest
+    } else {
+        cell.foot
+    };
+    if sloped && (cell.z - near).abs() < (surface - near).abs() {
+        (cell.z, true)
+    } else {
+        (surface, false)
     }
 }
 

@@ -183,8 +183,7 @@ fn fit_face(
             }
         }
     }
-    sel.on.fill(false);
-    sel.off_strip.fill(false);
+    sel.clear();
     for (iy, o) in strips() {
         let end = window_end(iy, o);
         for ix in o.ix..=end.min(s.nx - 1) {
@@ -412,6 +411,12 @@ struct Selection {
 }
 
 impl Selection {
+    /// Take no cell and leave out no strip, for a new fit.
+    fn clear(&mut self) {
+        self.on.fill(false);
+        self.off_strip.fill(false);
+    }
+
     /// Mark the strips whose taken cells lie off plane `p` together: their mean
     /// residual off the strips' median by more than [`STRIP_OFF_MADS`] times the
     /// spread of the strips' means (their median absolute deviation, scaled to a

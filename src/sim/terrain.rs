@@ -46,6 +46,15 @@ impl Extent {
         }
     }
 
+    /// The extent with vertical sides: a [`Extent::Bevelled`] band as the
+    /// [`Extent::Band`] it fades from; any other extent as it is.
+    pub fn sharp(self) -> Extent {
+        match self {
+            Extent::Bevelled { from_m, to_m, .. } => Extent::Band { from_m, to_m },
+            other => other,
+        }
+    }
+
     /// How much of an element's height stands at lateral position `y` (metres): 1
     /// where it is covered, 0 where not, in between across a bevelled side.
     pub fn share(self, y: f64) -> f64 {
@@ -59,7 +68,7 @@ impl Extent {
                 let fall = (to_m - y) / side_m + 0.5;
                 rise.min(fall).clamp(0.0, 1.0)
             }
-            Extent::Bevelled { from_m, to_m, .. } => Extent::Band { from_m, to_m }.share(y),
+            Extent::Bevelled { .. } => self.sharp().share(y),
             _ => {
                 if self.covers(y) {
                     1.0
