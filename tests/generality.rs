@@ -744,6 +744,99 @@ fn a_boulder_whose_foot_is_below_the_image_is_never_go() {
 }
 
 #[test]
+fn a_boulder_whose_front_the_image_s_side_edge_cuts_is_never_go() {
+    // A 320×240 camera 0.64 m high, pitched 34°, rolled −5° and yawed 4.4°, sees the
+    // left track's outer half only from 0.8-1 m out. A 15.6 cm rock there, on rough
+    // ground among pebbles, shows its top and back: two inner strips start on it,
+    // 12.4 cm and 14.3 cm over the rover's ground, with nothing seen before them
+    // (`sweep -- families 100 6801 random` #7, clean and noisy, was a go).
+    let mut c = mounted([0.1934, -0.0747, 0.6392], [-5.1248, 33.7733, 4.3807]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.3711;
+    let field = |height_m: f64| {
+        vec![
+            Element::Rough {
+                amplitude_m: 0.025,
+                correlation_m: 0.100_250_842,
+                seed: 12_964_015_005_304_982_826,
+            },
+            rock(2.2890, 0.5098, 0.0922, 0.0467),
+            rock(1.8791, 0.3311, 0.0810, 0.0661),
+            rock(1.1799, 0.4466, 0.1141, 0.0599),
+            rock(0.9273, 0.5453, 0.1508, height_m),
+        ]
+    };
+    for v in analyse_views(field(0.1564), &c, [None, Some(6_801_007)]) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Left),
+            "{:?}",
+            v.hazards
+        );
+    }
+    // A 9 cm rock there is a pebble the wheel climbs.
+    for v in analyse_views(field(0.09), &c, [None, Some(6_801_007)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    }
+}
+
+#[test]
+fn a_pebble_on_lumpy_ground_fitted_as_a_step_along_the_track_is_climbed() {
+    // A D435-like camera 1.13 m high, rolled 9.9° and yawed 8.8°, over lumpy ground
+    // with stones. The face analysis fits an 8.7 cm mound in the right track as a
+    // step whose toe line runs 82° to the axle; its top stands 11.3 cm over the dip
+    // before it, over a wheel radius but within rough ground's bumps of a 9 cm
+    // pebble, which the rover climbs (`sweep -- natural 200 6824 random 6` #124, clean
+    // and noisy, stopped). The same mound 15 cm high stops.
+    let mut c = mounted([0.0070, -0.0253, 1.1290], [9.9158, 19.5811, 8.7588]);
+    c.camera = rover_terrain::config::CameraConfig {
+        width: 848,
+        height: 480,
+        hfov_deg: 91.029,
+        vfov_deg: 59.910,
+        fx: Some(416.451),
+        fy: Some(415.246),
+        cx: Some(405.222),
+        cy: Some(225.847),
+        min_range_m: 0.3823,
+        ..c.camera
+    };
+    let stone = |x_m, y_m, radius_m, height_m, shape| Element::Stone {
+        x_m,
+        y_m,
+        radius_m,
+        height_m,
+        shape,
+    };
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.172_390_610,
+                seed: 8_125_628_376_058_999_391,
+            },
+            stone(1.7217, 0.2748, 0.1042, 0.0567, StoneShape::Mound),
+            stone(1.3527, 0.5459, 0.0808, 0.0505, StoneShape::Cone),
+            stone(2.3994, -0.4855, 0.0975, 0.0597, StoneShape::Cone),
+            stone(1.2155, -0.3966, 0.1179, height_m, StoneShape::Mound),
+        ]
+    };
+    for v in analyse_views(field(0.0875), &c, [None, Some(6_824_124)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?} {:?}", v.hazards, v.feature);
+    }
+    for v in analyse_views(field(0.15), &c, [None, Some(6_824_124)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+        assert!(
+            v.hazards
+                .iter()
+                .any(|h| h.kind == HazardKind::Step && h.side == Side::Right),
+            "{:?}",
+            v.hazards
+        );
+    }
+}
+
+#[test]
 fn a_stone_on_a_ramp_whose_foot_the_view_starts_on_is_judged_from_the_ramp() {
     // A 12.7° ramp across the corridor from 0.874 m, seen by a Kinect v2 0.69 m high
     // pitched 17° from 0.94 m, 1.5 cm up the ramp; a 5 cm stone on it at 1.24 m

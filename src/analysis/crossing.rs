@@ -428,15 +428,16 @@ fn ground_beyond(f: &Frame, surface: &[f32], iy: usize, from: usize) -> Option<f
     Some(sum / n as f32)
 }
 
-/// A rise or fall hidden below the image. The rover stands on its ground (z = 0 at
-/// the origin), so a track strip whose nearest seen ground (its first
-/// [`BLIND_FIT_M`]) gets more than a wheel radius (and rough ground's spread,
-/// [`HIDDEN_TOP_MARGIN_M`]) above or below it, or lies on one line (within
-/// [`ROUGH_LINE_RMS_M`]) whose mean level is over a wheel radius from it, changed
-/// height at least partly between the rover and the camera's view, where nothing is
-/// seen (a boulder whose foot is below the image is seen rising from part of its
-/// height), unless the strip is seen at that ground first (a toe in view: the step
-/// and slope test judges it).
+/// A rise or fall hidden below the image, or beside it. The rover stands on its
+/// ground (z = 0 at the origin), so a track strip whose nearest seen ground (its
+/// first [`BLIND_FIT_M`]) gets more than a wheel radius (and a margin for rough
+/// ground's bumps, [`UNSEEN_FOOT_MARGIN_M`]) above or below it, or lies on one line
+/// (within [`ROUGH_LINE_RMS_M`]) whose mean level is over a wheel radius from it,
+/// changed height at least partly between the rover and the camera's view, where
+/// nothing is seen (a boulder whose foot is below the image is seen rising from part
+/// of its height; one whose front the image's side edge cuts, from its top), unless
+/// the strip is seen at that ground first (a toe in view: the step and slope test
+/// judges it).
 ///
 /// When that seen ground lies on one line over its first [`BLIND_FIT_M`] (within
 /// rough ground's spread, [`ROUGH_LINE_RMS_M`]) and, continued back to the origin at
@@ -528,7 +529,8 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .fold((0.0f32, 0.0f32), |(s, n), (_, z)| (s + z, n + 1.0));
             let rest = fit(BLIND_FIT_M, 1);
             let level_over = rest.is_some_and(|(_, _, straight)| straight) && (sum / n).abs() > r;
-            if (reach.abs() <= r + HIDDEN_TOP_MARGIN_M && !level_over) || from_ground || from_foot {
+            if (reach.abs() <= r + UNSEEN_FOOT_MARGIN_M && !level_over) || from_ground || from_foot
+            {
                 continue;
             }
             let ramp = fit(BLIND_FIT_M, 0).is_some_and(toe_ahead) && rest.is_none_or(toe_ahead);
@@ -823,6 +825,15 @@ const HIDDEN_TOP_REACH_M: f32 = 0.25;
 /// it, metres: rough ground's spread about its mean (σ ≈ 1.25 cm for ±2.5 cm), so a
 /// 9 cm pebble on a bump is not taken for a boulder.
 const HIDDEN_TOP_MARGIN_M: f32 = 0.015;
+/// How much more than a wheel radius a rise whose foot is not seen must stand over
+/// the ground it is measured from to be an obstacle, metres ([`blind_rise`], and the
+/// face analysis's step relief): midway between the tallest pebble the rover drives
+/// over on rough ground (9 cm on a 2.5 cm bump, 11.5 cm up) and the lowest rock it
+/// must stop at (15 cm in a 2.5 cm dip, 12.5 cm up), over the default 11 cm wheel
+/// radius. With [`HIDDEN_TOP_MARGIN_M`] instead, a 15.6 cm rock whose front the
+/// image's side edge cut, seen 12.4 cm over the rover's ground in one inner strip
+/// and 14.3 cm in the next, was a go (`sweep -- families 100 6801 random` #7).
+pub(crate) const UNSEEN_FOOT_MARGIN_M: f32 = 0.01;
 /// Fewest cells of ground beside a hidden top, more than a wheel radius below it, for
 /// [`hidden_tops`] to take it for an obstacle.
 const HIDDEN_TOP_MIN_CELLS: usize = 3;

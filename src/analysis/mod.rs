@@ -478,10 +478,13 @@ fn too_steep_face(
 }
 
 /// Whether a go's measured face (`measured`) is a step (±90°) whose ground past its
-/// onsets stands a wheel radius or more off the ground before them (`step_relief`,
+/// onsets stands more than a wheel radius and a margin for rough ground's bumps
+/// ([`crossing::UNSEEN_FOOT_MARGIN_M`]) off the ground before them (`step_relief`,
 /// metres, from `feature::analyse`): then it is no low step, and a `step` hazard on
 /// each side its workcase names goes into `verdict`, where the toe line is nearest
-/// within that side's wheel track, metres.
+/// within that side's wheel track, metres. Without the margin, an 8.7 cm mound on
+/// lumpy ground, 11.3 cm over the dip before it, fitted with a face along the track
+/// stopped the rover (`sweep -- natural 200 6824 random 6` #124).
 ///
 /// The step test judges a strip's rise from the cells it sees; where the foot of what
 /// a strip climbs lies in a shadow (a 15 cm rock just behind an 8 cm one, the dip
@@ -498,7 +501,7 @@ fn too_high_step(
     let (Some(relief), Some(distance_m)) = (step_relief, measured.distance_m) else {
         return false;
     };
-    if relief < rover.wheel_radius_m as f32 {
+    if relief <= rover.wheel_radius_m as f32 + crossing::UNSEEN_FOOT_MARGIN_M {
         return false;
     }
     on_toe_line(measured, distance_m, HazardKind::Step, rover, verdict);
