@@ -2526,6 +2526,53 @@ fn ground_falling_away_beside_a_track_over_a_sloping_edge_is_go_and_a_drop_beyon
 }
 
 #[test]
+fn a_sloping_edge_seen_by_a_low_camera_turned_towards_it_is_go_and_a_drop_beyond_stops() {
+    // Ground falling away beyond the left track's inner edge, the edge drawn sloping
+    // over 9-10 cm, seen by cameras 0.59-0.7 m high yawed 8-9° towards it (`sweep --
+    // bevelled 60 6812 random 2` #9 and #48, clean and noisy, `drop_off`s under the
+    // belly). Between the centres of the seen cells either side the fall measured
+    // 60°, and the camera met the belly's edge strip at 6.2°; on the edge itself, 70°
+    // steep, it meets it at 2°. Farther out, the track's strips past the edge lie in
+    // its shadow, and rows see no ground on the fall's low side at all.
+    let mut low_qvga = mounted([0.2618, -0.0722, 0.6997], [6.8813, 26.6572, 8.7738]);
+    (low_qvga.camera.width, low_qvga.camera.height) = (320, 240);
+    low_qvga.camera.min_range_m = 0.3519;
+    let mut low_v2 = kinect_v2(mounted(
+        [0.0544, -0.0975, 0.5935],
+        [5.6372, 33.4006, 8.2507],
+    ));
+    low_v2.camera.min_range_m = 0.4521;
+    for (c, toe, g, side_m, seed) in [
+        (&low_qvga, 1.449_257, -14.279_926, 0.089_850, 6_812_009),
+        (&low_v2, 0.944_711, -12.621_777, 0.100_531, 6_812_048),
+    ] {
+        let edge = Extent::Bevelled {
+            from_m: 0.2,
+            to_m: 100.0,
+            side_m,
+        };
+        let descent = |g| Element::ramp(toe, 0.45, g, 0.0, edge);
+        let [clean, noisy] = analyse_views(vec![descent(g)], c, [None, Some(seed)]);
+        assert_go(&clean, 9, toe, g, None);
+        assert_eq!(noisy.decision, Decision::Go, "{:?}", noisy.hazards);
+        assert_eq!(noisy.feature.map(|f| f.workcase), Some(9));
+        // Too steep, a 30 cm drop across the corridor beyond, or a pit under the
+        // belly band's half beside the edge: never go.
+        let v = analyse(vec![descent(-34.0)], c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        let drop = Element::DropOff {
+            x_m: 2.2,
+            depth_m: 0.3,
+        };
+        let v = analyse(vec![descent(g), drop], c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        let pit = block_at(2.2, 0.1, 0.4, 0.2, -1.0);
+        let v = analyse(vec![descent(g), pit], c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
+#[test]
 fn a_capped_one_track_descent_with_sloping_sides_is_measured_from_its_own_strips() {
     // A trench under one track, 14-15 cm deep, its sides drawn sloping over 9 cm: the
     // track's edge strips hold the sides' means, a share of the depth, and the face
