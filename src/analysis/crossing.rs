@@ -194,7 +194,7 @@ fn continuing(cell: &Cell, carried: Option<f32>, sloped: bool) -> (f32, bool) {
 /// [`ground_beside_face`] to tell the two apart: `sweep -- families 100 5701 random`
 /// #47, noisy, an 18 cm `step` 2.80 m out); it lies within [`WALL_REACH_M`] of that
 /// x; its top stands no higher than the face's did (within rough ground's spread,
-/// [`HIDDEN_TOP_MARGIN_M`]); and its top voxel hugs the strip's side
+/// [`ROUGH_SPREAD_M`]); and its top voxel hugs the strip's side
 /// ([`FACE_OFF_VOXELS`] off its centre line `y_mid`) on the face's line (within that
 /// much of the face's top). Its top is then
 /// the wall's, not a bound on the strip's ground: a trench's wall along the
@@ -210,7 +210,7 @@ fn wall_goes_on(cell: &Cell, wall: Option<[f32; 3]>, y_mid: f32, vs: f32) -> boo
             let on_line = |y: f32| (y - top_y).abs() <= side;
             (cell.crest == cell.foot || on_line(cell.crest_xy[1]))
                 && cell.x - x <= WALL_REACH_M
-                && cell.top <= top + HIDDEN_TOP_MARGIN_M
+                && cell.top <= top + ROUGH_SPREAD_M
                 && on_line(cell.top_xy[1])
         })
 }
@@ -316,8 +316,8 @@ const SPILL_M: f32 = 0.05;
 /// spans the track, so the strips beside rise with it, but a boulder stands on ground
 /// that continues beside it. So when a third or more of what the other strips of the track
 /// within [`HIDDEN_TOP_REACH_M`] see past the exit, within [`HIDDEN_TOP_REACH_M`] of
-/// it, lies more than a wheel radius and rough ground's spread
-/// ([`HIDDEN_TOP_MARGIN_M`]) below the height the climb last reached (its exit, or
+/// it, lies more than a wheel radius and a margin for rough ground's bumps
+/// ([`UNSEEN_FOOT_MARGIN_M`]) below the height the climb last reached (its exit, or
 /// the mean of a cell the image's top edge cuts just past it: a lower bound), the
 /// climb is an obstacle higher than a wheel radius with its far side hidden: a step
 /// at its foot (the last cell of the climb at most half a wheel radius above its
@@ -376,7 +376,7 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     for jx in ix + 1..(ix + 1 + reach).min(f.spec.nx) {
                         if let Some(z) = ground(jx, jy) {
                             all += 1;
-                            below += usize::from(z < top - r - HIDDEN_TOP_MARGIN_M);
+                            below += usize::from(z < top - r - UNSEEN_FOOT_MARGIN_M);
                         }
                     }
                 }
@@ -388,7 +388,7 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 let foot_m = f.spec.x_centre(foot).max(0.0);
                 if below < HIDDEN_TOP_MIN_CELLS || 3 * below < all {
                     let past = ground_beyond(f, surface, iy, ix + 1);
-                    if past.is_some_and(|z| z < top - r - HIDDEN_TOP_MARGIN_M) {
+                    if past.is_some_and(|z| z < top - r - UNSEEN_FOOT_MARGIN_M) {
                         beyond_here = true;
                         beyond_foot = beyond_foot.min(foot_m);
                     }
@@ -510,7 +510,7 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     (reach, at) = (z, i);
                 }
             }
-            let from_ground = near().take(at).any(|(_, z)| z.abs() <= HIDDEN_TOP_MARGIN_M);
+            let from_ground = near().take(at).any(|(_, z)| z.abs() <= ROUGH_SPREAD_M);
             // Or seen from a passable ramp's foot: its first cell within the rise
             // threshold of the rover's ground, and its first BLIND_FOOT_M on one line
             // whose toe is ahead (with and without that cell). What stands on the ramp
@@ -555,7 +555,7 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// rough ground's bumps steepen a 24° ramp past 30°) and the part of the cut cells
 /// that is seen (their upper surface, `crest`) are fitted with one line from the
 /// last cell at the climb's foot (within rough ground's spread,
-/// [`HIDDEN_TOP_MARGIN_M`], of the lowest). When that line is steeper than the slope
+/// [`ROUGH_SPREAD_M`], of the lowest). When that line is steeper than the slope
 /// limit and the cut cells' top stands [`STEEP_EXIT_RISE_M`] or more above the foot,
 /// the strip saw the front of a wall, a step or a ramp too steep to climb, and the
 /// image ended before its top: the step and slope test sees under a wheel radius of
@@ -620,7 +620,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             let Some(base) = before().map(|(_, z)| z).reduce(f32::min) else {
                 continue;
             };
-            let Some(foot) = before().find(|&(_, z)| z <= base + HIDDEN_TOP_MARGIN_M) else {
+            let Some(foot) = before().find(|&(_, z)| z <= base + ROUGH_SPREAD_M) else {
                 continue;
             };
             let cut = (h..(h + 3).min(s.nx))
@@ -821,16 +821,15 @@ const BLIND_FOOT_M: f32 = 0.15;
 /// How far beside and beyond a climb leaving the view [`hidden_tops`] looks for the
 /// ground it stands on, metres: a boulder's radius.
 const HIDDEN_TOP_REACH_M: f32 = 0.25;
-/// How much more than a wheel radius a hidden top must stand above the ground beside
-/// it, metres: rough ground's spread about its mean (σ ≈ 1.25 cm for ±2.5 cm), so a
-/// 9 cm pebble on a bump is not taken for a boulder.
-const HIDDEN_TOP_MARGIN_M: f32 = 0.015;
-/// How much more than a wheel radius a rise whose foot is not seen must stand over
-/// the ground it is measured from to be an obstacle, metres ([`blind_rise`], and the
-/// face analysis's step relief): midway between the tallest pebble the rover drives
+/// Rough ground's spread about its mean, metres (σ ≈ 1.25 cm for ±2.5 cm): ground
+/// within it of a level counts as at that level.
+const ROUGH_SPREAD_M: f32 = 0.015;
+/// How much more than a wheel radius a rise whose foot or far side is not seen must
+/// stand over the ground it is measured from to be an obstacle, metres
+/// ([`blind_rise`], [`hidden_tops`], and the face analysis's step relief): midway between the tallest pebble the rover drives
 /// over on rough ground (9 cm on a 2.5 cm bump, 11.5 cm up) and the lowest rock it
 /// must stop at (15 cm in a 2.5 cm dip, 12.5 cm up), over the default 11 cm wheel
-/// radius. With [`HIDDEN_TOP_MARGIN_M`] instead, a 15.6 cm rock whose front the
+/// radius. With 1.5 cm (rough ground's spread) instead, a 15.6 cm rock whose front the
 /// image's side edge cut, seen 12.4 cm over the rover's ground in one inner strip
 /// and 14.3 cm in the next, was a go (`sweep -- families 100 6801 random` #7).
 pub(crate) const UNSEEN_FOOT_MARGIN_M: f32 = 0.01;
