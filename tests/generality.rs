@@ -343,17 +343,11 @@ fn a_post_whose_front_the_view_ends_on_is_a_step_in_one_strip_too() {
     // by the wheelbase of flat ground before it, which lies on a gentle line, as a
     // rough ramp's bump: no step. The full-width step was left to the steep-exit test
     // (`unknown`); a post 5 cm wide, in one strip, was a go.
-    let mut c = mounted([0.1561, -0.0695, 0.5255], [4.3343, 39.9865, 9.4852]);
-    c.camera = rover_terrain::config::CameraConfig {
-        width: 848,
-        height: 480,
-        fx: Some(416.36),
-        fy: Some(416.568),
-        cx: Some(424.053),
-        cy: Some(235.159),
-        min_range_m: 0.4397,
-        ..c.camera
-    };
+    let c = d435_like(
+        mounted([0.1561, -0.0695, 0.5255], [4.3343, 39.9865, 9.4852]),
+        [416.36, 416.568, 424.053, 235.159],
+        0.4397,
+    );
     let step_right = |v: &Verdict| {
         v.hazards
             .iter()
@@ -454,6 +448,16 @@ fn block_at(x_m: f64, y_m: f64, length_m: f64, width_m: f64, height_m: f64) -> E
         width_m,
         height_m,
     }
+}
+
+/// `c` with a RealSense D435-like camera: 848×480 pixels, focal lengths and
+/// principal point `[fx, fy, cx, cy]` (pixels), seeing from `min_range_m` (metres).
+fn d435_like(mut c: Config, [fx, fy, cx, cy]: [f64; 4], min_range_m: f64) -> Config {
+    (c.camera.width, c.camera.height) = (848, 480);
+    (c.camera.fx, c.camera.fy) = (Some(fx), Some(fy));
+    (c.camera.cx, c.camera.cy) = (Some(cx), Some(cy));
+    c.camera.min_range_m = min_range_m;
+    c
 }
 
 /// `c` with a Kinect v2's camera: 512×424 pixels, 70.6°×60°.
@@ -711,17 +715,11 @@ fn a_boulder_whose_foot_is_below_the_image_is_never_go() {
     // A D435-like camera 0.53 m high sees the ground from 0.62 m: a 15 cm boulder
     // 0.8 m out is seen from 2-4 cm up its front, so the strips over it climb under a
     // wheel radius in view, and its back hides in its own shadow.
-    let mut c = mounted([0.276, 0.028, 0.533], [4.75, 26.91, 5.51]);
-    c.camera = rover_terrain::config::CameraConfig {
-        width: 848,
-        height: 480,
-        fx: Some(422.19),
-        fy: Some(423.38),
-        cx: Some(406.81),
-        cy: Some(237.41),
-        min_range_m: 0.366,
-        ..c.camera
-    };
+    let c = d435_like(
+        mounted([0.276, 0.028, 0.533], [4.75, 26.91, 5.51]),
+        [422.19, 423.38, 406.81, 237.41],
+        0.366,
+    );
     let rock = |height_m| Element::Rock {
         x_m: 0.803,
         y_m: 0.446,
@@ -788,19 +786,11 @@ fn a_pebble_on_lumpy_ground_fitted_as_a_step_along_the_track_is_climbed() {
     // before it, over a wheel radius but within rough ground's bumps of a 9 cm
     // pebble, which the rover climbs (`sweep -- natural 200 6824 random 6` #124, clean
     // and noisy, stopped). The same mound 15 cm high stops.
-    let mut c = mounted([0.0070, -0.0253, 1.1290], [9.9158, 19.5811, 8.7588]);
-    c.camera = rover_terrain::config::CameraConfig {
-        width: 848,
-        height: 480,
-        hfov_deg: 91.029,
-        vfov_deg: 59.910,
-        fx: Some(416.451),
-        fy: Some(415.246),
-        cx: Some(405.222),
-        cy: Some(225.847),
-        min_range_m: 0.3823,
-        ..c.camera
-    };
+    let c = d435_like(
+        mounted([0.0070, -0.0253, 1.1290], [9.9158, 19.5811, 8.7588]),
+        [416.451, 415.246, 405.222, 225.847],
+        0.3823,
+    );
     let stone = |x_m, y_m, radius_m, height_m, shape| Element::Stone {
         x_m,
         y_m,
@@ -1371,17 +1361,11 @@ fn a_one_track_ramp_rising_out_of_view_lifts_no_belly_cell_beside_it() {
     // ramp's side face up to 0.76 m, and the track cells beside them, cut by the
     // image's top edge, only their lower part (0.38 m): measured against that, the
     // side face stood under the belly, and the verdict was a belly stop.
-    let mut c = mounted([0.059, 0.031, 1.134], [0.432, 35.928, -3.715]);
-    c.camera = rover_terrain::config::CameraConfig {
-        width: 848,
-        height: 480,
-        fx: Some(429.11),
-        fy: Some(430.14),
-        cx: Some(422.18),
-        cy: Some(228.79),
-        min_range_m: 0.306,
-        ..c.camera
-    };
+    let c = d435_like(
+        mounted([0.059, 0.031, 1.134], [0.432, 35.928, -3.715]),
+        [429.11, 430.14, 422.18, 228.79],
+        0.306,
+    );
     let (toe, g, alpha) = (0.8699, 22.648, 2.2935);
     let ramp = || Element::ramp(toe, 0.45, g, alpha, LEFT_TRACK);
     let [clean, v] = analyse_views(vec![ramp()], &c, [None, Some(22)]);
@@ -1411,17 +1395,11 @@ fn a_step_down_whose_shadow_is_one_cell_long_is_never_go() {
     // a 12 cm one under the left track 1.28 m out, a D435-like camera 1.2 m high).
     let mut kinect2 = kinect_v2(mounted([0.042, 0.003, 0.930], [0.555, 36.723, -1.173]));
     kinect2.camera.min_range_m = 0.323;
-    let mut d435 = mounted([0.244, 0.092, 1.200], [0.167, 23.363, 2.883]);
-    d435.camera = rover_terrain::config::CameraConfig {
-        width: 848,
-        height: 480,
-        fx: Some(430.53),
-        fy: Some(431.33),
-        cx: Some(422.39),
-        cy: Some(231.88),
-        min_range_m: 0.387,
-        ..d435.camera
-    };
+    let d435 = d435_like(
+        mounted([0.244, 0.092, 1.200], [0.167, 23.363, 2.883]),
+        [430.53, 431.33, 422.39, 231.88],
+        0.387,
+    );
     let step = |x_m: f64, height_m: f64, extent: Extent| Element::Step {
         x_m,
         height_m,
@@ -2294,20 +2272,14 @@ fn a_wall_cut_where_its_lower_band_is_too_sparse_to_be_the_floor_is_no_floor_tha
     // points in its upper band and the floor too few in the lower one, so the cell's
     // lower surface fell back to its upper one, the face's top: a rise of 30 cm into
     // a cut cell, a `step` (`sweep -- oblique 100 6203` #66, clean and noisy).
-    let mut c = mounted(
-        [0.249_558_5, -0.056_139_2, 0.531_800_7],
-        [-7.471_745_3, 41.913_227_5, -7.137_952_6],
+    let c = d435_like(
+        mounted(
+            [0.249_558_5, -0.056_139_2, 0.531_800_7],
+            [-7.471_745_3, 41.913_227_5, -7.137_952_6],
+        ),
+        [431.588_867, 430.066_128, 416.414_887, 245.802_260],
+        0.325_873,
     );
-    c.camera = rover_terrain::config::CameraConfig {
-        width: 848,
-        height: 480,
-        fx: Some(431.588_867),
-        fy: Some(430.066_128),
-        cx: Some(416.414_887),
-        cy: Some(245.802_260),
-        min_range_m: 0.325_873,
-        ..c.camera
-    };
     let descent = Element::ramp(1.177_116, -0.45, -17.060_374, 35.979_487, RIGHT_TRACK);
     descent_goes_but_blocks_on_its_floor_do_not(&c, &descent, 10, -0.55, 6_203_066);
 }
