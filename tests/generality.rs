@@ -827,6 +827,41 @@ fn a_pebble_on_lumpy_ground_fitted_as_a_step_along_the_track_is_climbed() {
 }
 
 #[test]
+fn a_stone_on_a_climbable_ramp_is_climbed_and_the_ramp_measured() {
+    // A Kinect v2 0.5 m high, pitched 38° and yawed −8.8°, sees a 17.2° ramp whose
+    // toe is 1.44 m out, a 5.9 cm rock 0.24 m up it in the left track. From the toe to
+    // the rock's top the strip climbs 31°; no wheelbase of it lies on one line (the
+    // rock stands off the ramp and its shadow breaks the strip), so that climb was a
+    // `slope` (`sweep -- families 150 6921 random 10` #82, clean and noisy).
+    let mut c = kinect_v2(mounted(
+        [0.2093, 0.0295, 0.5038],
+        [-0.2922, 38.2027, -8.7814],
+    ));
+    c.camera.min_range_m = 0.4042;
+    let (toe, g) = (1.4369, 17.1649);
+    let scene = |g: f64, height_m: f64| {
+        vec![
+            Element::ramp(toe, 0.0, g, 0.0, Extent::Full),
+            rock(1.6731, 0.3763, 0.0883, height_m),
+        ]
+    };
+    for v in analyse_views(scene(g, 0.0589), &c, [None, Some(6_921_082)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        let f = v.feature.unwrap();
+        assert_eq!(f.workcase, 2);
+        assert!(
+            (f64::from(f.gradient_deg.unwrap()) - g).abs() < 2.0,
+            "{f:?}"
+        );
+    }
+    // A 15 cm rock there, or the same rock on a 35° ramp: never go.
+    for scene in [scene(g, 0.15), scene(35.0, 0.0589)] {
+        let v = analyse(scene, &c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
+#[test]
 fn a_stone_on_a_ramp_whose_foot_the_view_starts_on_is_judged_from_the_ramp() {
     // A 12.7° ramp across the corridor from 0.874 m, seen by a Kinect v2 0.69 m high
     // pitched 17° from 0.94 m, 1.5 cm up the ramp; a 5 cm stone on it at 1.24 m
