@@ -826,12 +826,13 @@ const HIDDEN_TOP_REACH_M: f32 = 0.25;
 const ROUGH_SPREAD_M: f32 = 0.015;
 /// How much more than a wheel radius a rise whose foot or far side is not seen must
 /// stand over the ground it is measured from to be an obstacle, metres
-/// ([`blind_rise`], [`hidden_tops`], and the face analysis's step relief): midway between the tallest pebble the rover drives
-/// over on rough ground (9 cm on a 2.5 cm bump, 11.5 cm up) and the lowest rock it
-/// must stop at (15 cm in a 2.5 cm dip, 12.5 cm up), over the default 11 cm wheel
-/// radius. With 1.5 cm (rough ground's spread) instead, a 15.6 cm rock whose front the
-/// image's side edge cut, seen 12.4 cm over the rover's ground in one inner strip
-/// and 14.3 cm in the next, was a go (`sweep -- families 100 6801 random` #7).
+/// ([`blind_rise`], [`hidden_tops`], and the face analysis's step relief): midway
+/// between the tallest pebble the rover drives over on rough ground (9 cm on a
+/// 2.5 cm bump, 11.5 cm up) and the lowest rock it must stop at (15 cm in a 2.5 cm
+/// dip, 12.5 cm up), over the default 11 cm wheel radius. With 1.5 cm (rough
+/// ground's spread) instead, a 15.6 cm rock whose front the image's side edge cut,
+/// seen 12.4 cm over the rover's ground in one inner strip and 14.3 cm in the next,
+/// was a go (`sweep -- families 100 6801 random` #7).
 pub(crate) const UNSEEN_FOOT_MARGIN_M: f32 = 0.01;
 /// Fewest cells of ground beside a hidden top, more than a wheel radius below it, for
 /// [`hidden_tops`] to take it for an obstacle.
@@ -1177,7 +1178,7 @@ fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Op
         return None;
     }
     let mut end = if strip[j].past { j - 1 } else { j };
-    while end + 1 < strip.len() && joined(strip, end) {
+    while end + 1 < strip.len() && joined(strip, end, 1) {
         end += 1;
     }
     let view_ends = end + 1 == strip.len() || strip[end + 1].past;
@@ -1185,7 +1186,8 @@ fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Op
         return None;
     }
     let mut start = i;
-    while start > 0 && joined(strip, start - 1) && strip[end].x - strip[start - 1].x <= wheelbase {
+    while start > 0 && joined(strip, start - 1, 1) && strip[end].x - strip[start - 1].x <= wheelbase
+    {
         start -= 1;
     }
     let window = &strip[start..=end];
@@ -1227,10 +1229,11 @@ fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Op
         .map(|(_, slope)| slope)
 }
 
-/// Whether strip cells `k` and `k + 1` are neighbouring rows, both seen whole (not
-/// past the horizon): a window of [`line_windows`] or [`view_end_slope`] runs on.
-fn joined(strip: &[StripCell], k: usize) -> bool {
-    strip[k + 1].ix == strip[k].ix + 1 && !strip[k].past && !strip[k + 1].past
+/// Whether strip cells `k` and `k + 1` are at most `step` rows apart (1: neighbouring
+/// rows), both seen whole (not past the horizon): a window of [`line_windows`],
+/// [`stone_windows`] or [`view_end_slope`] runs on.
+fn joined(strip: &[StripCell], k: usize, step: usize) -> bool {
+    strip[k + 1].ix <= strip[k].ix + step && !strip[k].past && !strip[k + 1].past
 }
 
 /// Least length of a ramp's line for [`view_end_slope`], metres: over 0.4 m, ±2.5 cm
@@ -1275,10 +1278,11 @@ fn windows(
     wheelbase: f32,
     step: usize,
 ) -> impl Iterator<Item = &[StripCell]> + '_ {
-    let joined =
-        |k: usize| strip[k + 1].ix <= strip[k].ix + step && !strip[k].past && !strip[k + 1].past;
     let mut end = j;
-    while end + 1 < strip.len() && joined(end) && strip[end + 1].x - strip[i].x <= wheelbase {
+    while end + 1 < strip.len()
+        && joined(strip, end, step)
+        && strip[end + 1].x - strip[i].x <= wheelbase
+    {
         end += 1;
     }
     // A run may end on a cell past the horizon (its height only a bound): the window
@@ -1288,7 +1292,10 @@ fn windows(
     // there is no window behind.
     let last = if strip[j].past && j > i { j - 1 } else { j };
     let mut start = i;
-    while start > 0 && joined(start - 1) && strip[last].x - strip[start - 1].x <= wheelbase {
+    while start > 0
+        && joined(strip, start - 1, step)
+        && strip[last].x - strip[start - 1].x <= wheelbase
+    {
         start -= 1;
     }
     let behind = (last > i || !strip[j].past).then(|| &strip[start..=last]);
@@ -1814,12 +1821,7 @@ fn grazing_across(
 /// sees the ground at the fall's top on its high side, within [`ACROSS_STRIPS`] and
 /// half of [`ACROSS_DROP_M`] of the line's top (the edge goes on); the line is moved
 /// to that height.
-fn fall_goes_on(
-    f: &Frame,
-    ix: usize,
-    iy: usize,
-    line: ((f32, f32), (f32, f32)),
-) -> Option<((f32, f32), (f32, f32))> {
+fn fall_goes_on(f: &Frame, ix: usize, iy: usize, line: Fall) -> Option<Fall> {
     let s = f.spec;
     let ((ya, za), (yb, zb)) = line;
     let seen_z = |jy: usize| {
@@ -1855,7 +1857,7 @@ fn beside(iy: usize, ny: usize, up: bool) -> impl Iterator<Item = usize> {
 /// ends at its edge facing the strip: its y is taken there. Between cell centres,
 /// a fall 10 cm wide seen across three strips measured 60° for 70°, and the camera
 /// met it at 6.2° for 2° (`sweep -- bevelled 60 6812 random 2` #9, a `drop_off`).
-fn across_row(f: &Frame, ix: usize, iy: usize) -> Option<((f32, f32), (f32, f32))> {
+fn across_row(f: &Frame, ix: usize, iy: usize) -> Option<Fall> {
     let s = f.spec;
     let seen_at = |jy: usize| {
         let c = s.cell(ix, jy);
@@ -1872,6 +1874,10 @@ fn across_row(f: &Frame, ix: usize, iy: usize) -> Option<((f32, f32), (f32, f32)
     };
     (fall >= ACROSS_DROP_M).then(|| (at(jb, &below, 1.0), at(ja, &above, -1.0)))
 }
+
+/// A fall across a strip's row: (y, height) of its two ends, metres, the lower y
+/// first ([`across_row`]).
+type Fall = ((f32, f32), (f32, f32));
 
 /// How many strips to either side [`grazing_across`] looks for seen ground.
 const ACROSS_STRIPS: usize = 3;

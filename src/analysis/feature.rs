@@ -214,7 +214,7 @@ fn fit_face(
                     continue;
                 }
                 let cell = &f.cells[c];
-                let r = f64::from(g.z[c]) - p.z(f64::from(cell.x), f64::from(cell.y));
+                let r = g.off(c, cell, &p);
                 let ok = !sel.off_strip[iy]
                     && r.abs() <= tol
                     && past_toe(&p, ix, iy)
@@ -329,7 +329,7 @@ fn residuals(f: &Frame, g: &Ground, sel: &Selection, p: &Plane) -> (f64, usize) 
     let mut sse = 0.0;
     let mut n = 0;
     for (c, cell) in sel.taken(f) {
-        let r = f64::from(g.z[c]) - p.z(f64::from(cell.x), f64::from(cell.y));
+        let r = g.off(c, cell, p);
         sse += r * r;
         n += 1;
     }
@@ -434,7 +434,7 @@ impl Selection {
             let c = c as usize;
             if self.on[c] {
                 let cell = &f.cells[c];
-                let r = f64::from(g.z[c]) - p.z(f64::from(cell.x), f64::from(cell.y));
+                let r = g.off(c, cell, p);
                 let sum = &mut self.strip_sums[f.spec.strip_of(c)];
                 *sum = (sum.0 + r, sum.1 + 1);
             }
@@ -483,6 +483,13 @@ struct Ground<'a> {
     /// [`unresolved_face_along`]): point-weighted, a strip of such cells would bend
     /// the plane toward itself and stay within its tolerance.
     usable: &'a [bool],
+}
+
+impl Ground<'_> {
+    /// How far cell `c`'s ground (`cell` its grid cell) stands above plane `p`, metres.
+    fn off(&self, c: usize, cell: &Cell, p: &Plane) -> f64 {
+        f64::from(self.z[c]) - p.z(f64::from(cell.x), f64::from(cell.y))
+    }
 }
 
 /// Fill [`Ground::z`] for the cells of the track strips (the steps read no other).
