@@ -1,0 +1,207 @@
+//! The belly band: anything taller than the belly clearance over the tracks beside it,
+//! and the tracks' height per row it is measured against.
+
+use super::{line_fit, Frame, Region, ROUGH_LINE_RMS_M};
+use crate::verdict::{Hazard, HazardKind, Verdict};
+
+/// Anything under the belly taller than the belly clearance above the higher of the
+/// two wheel tracks at the same distance (the median height of each track's cells
+/// seen whole in that row; a row with none borrows the nearest row within 3 cells,
+/// else the ground plane z = 0, unless the track there is past the sensor's horizon:
+/// then the row is beyond view and not judged). A cell the image's top edge cuts
+/// holds only what lies below the edge: a ramp rising out of view left in one such
+/// track cell a few centimetres of its side face, and that "track height" put the
+/// ramp's side in the belly band 40 cm above it (`sweep -- families 100 5501 random`
+/// #55 noisy). A belly cell beside a track is also measured against that track cell's
+/// upper surface: a face along the band edge is the side of what stands in the track.
+/// A belly cell off the band's edges that the image's top edge cuts, already more
+/// than a wheel radius above the tracks beside it (which are seen), is an obstacle
+/// whose top is not seen: unknown ground there, whatever its bound.
+pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdict: &mut Verdict) {
+    let clearance = f.cfg.rover.belly_clearance_m as f32;
+    let r = f.cfg.rover.wheel_radius_m as f32;
+    let s = f.spec;
+    track_medians(f, values, track_ref, |c| {
+        (f.seen[c] && !f.past[c]).then(|| f.cells[c].z)
+    });
+    for ix in 0..s.nx {
+        let mut reference = f32::NEG_INFINITY;
+        let mut beyond_view = false;
+        for (k, region) in [Region::Left, Region::Right].into_iter().enumerate() {
+            let near = (0..=3usize)
+                .flat_map(|d| [ix.checked_sub(d), Some(ix + d)])
+                .flatten()
+                .filter_map(|j| track_ref.get(j).map(|r| r[k]))
+                .find(|v| !v.is_nan());
+            match near {
+                Some(v) => reference = reference.max(v),
+                // No track data near this row because the track is past the horizon:
+                // how high the wheels stand here is not known.
+                None => beyond_view |= f.strips(region).any(|iy| f.past[s.cell(ix, iy)]),
+            }
+        }
+        if beyond_view {
+            continue;
+        }
+        if reference == f32::NEG_INFINITY {
+            reference = 0.0;
+        }
+        for iy in f.strips(Region::Belly) {
+            let c = s.cell(ix, iy);
+            if !f.seen[c] {
+                continue;
+            }
+            // Beside a track, the band's edge cells hold the side face of whatever
+            // stands in the track: it is as high as the track there, not under the belly.
+            // A track cell the image's top edge cuts (or past the horizon) is at least
+            // as high as its top (a ramp rising out of view: its upper surface there is
+            // only partly seen). A face on the band's edge line splits its points
+            // between the two strips as they fall, so that one row's track cell may
+            // hold only its foot: the track cells of the rows before and after count
+            // too (a coarse camera's rows meet the face every other cell).
+            let beside = [iy.checked_sub(1), Some(iy + 1)]
+                .into_iter()
+                .flatten()
+                .filter(|&j| j < s.ny && f.region[j] != Region::Belly)
+                .flat_map(|j| (ix.saturating_sub(1)..(ix + 2).min(s.nx)).map(move |i| s.cell(i, j)))
+                .filter(|&j| f.seen[j])
+                .map(|j| {
+                    let cell = &f.cells[j];
+                    if f.past[j] {
+                        cell.top.max(cell.crest)
+                    } else {
+                        cell.crest
+                    }
+                })
+                .fold(reference, f32::max);
+            let above = f.cells[c].top - beside;
+            let edge = || {
+                [iy.checked_sub(1), Some(iy + 1)]
+                    .into_iter()
+                    .any(|j| j.is_none_or(|j| j >= s.ny || f.region[j] != Region::Belly))
+            };
+            let kind = if above > clearance {
+                Some(HazardKind::Belly)
+            } else if f.past[c] && above > r && !edge() && !on_track_surface(f, ix, iy, r) {
+                // Rising out of the image more than a wheel radius above the tracks
+                // beside it, which are seen: an obstacle whose top is not seen. How
+                // tall it is, is not known. (An edge cell may hold the side of a
+                // ramp under the track beside it, rising out of view with it.)
+                Some(HazardKind::Unknown)
+            } else {
+                None
+            };
+            if let Some(kind) = kind {
+                verdict.add_hazard(Hazard {
+                    kind,
+                    side: Region::Belly.side(),
+                    distance_m: s.origin[0] + ix as f32 * s.voxel_m,
+                });
+            }
+        }
+    }
+}
+
+/// Whether belly cell (`ix`, `iy`), past the horizon, lies on the surface of the wheel
+/// track on its side carried across: that track's cells seen in row `ix` (below the
+/// horizon, at least [`CROSS_MIN_CELLS`]) lie on one line across the strips (within
+/// rough ground's spread, [`ROUGH_LINE_RMS_M`]), and the cell's top stands no more
+/// than a wheel radius `r` above that line carried to its centre. A ramp under one
+/// side met diagonally rises across the corridor as well as along it: where it
+/// covers the belly band's half too, the band's cells stand above the track's middle
+/// by its cross slope (a 24° ramp over y ≥ 0 whose toe line runs at −35° to the axle
+/// rose 11 cm from the track's middle to the corridor's centre line, and was an
+/// obstacle whose top is not seen: `sweep -- workcases 60 6609` #18, #26). The
+/// surface the rover climbs rising out of view is not one.
+fn on_track_surface(f: &Frame, ix: usize, iy: usize, r: f32) -> bool {
+    let s = f.spec;
+    let y = s.y_centre(iy);
+    let side = if y >= 0.0 {
+        Region::Left
+    } else {
+        Region::Right
+    };
+    let across = || {
+        (0..s.ny)
+            .filter(move |&j| f.region[j] == side)
+            .map(move |j| (j, s.cell(ix, j)))
+            .filter(|&(_, c)| f.seen[c] && !f.past[c])
+            .map(|(j, c)| (s.y_centre(j), f.cells[c].z))
+    };
+    if across().count() < CROSS_MIN_CELLS {
+        return false;
+    }
+    line_fit(across()).is_some_and(|(p, rms)| {
+        rms <= f64::from(ROUGH_LINE_RMS_M)
+            && f64::from(f.cells[s.cell(ix, iy)].top) <= p.z(f64::from(y), 0.0) + f64::from(r)
+    })
+}
+
+/// Fewest seen cells of a track's row for [`on_track_surface`] to carry its line.
+const CROSS_MIN_CELLS: usize = 4;
+
+/// Per cell row, each track's median height, `[left, right]`: the median over the
+/// track's strips of `height(cell)` where it is `Some` (NaN where none is).
+pub(crate) fn track_medians(
+    f: &Frame,
+    values: &mut Vec<f32>,
+    out: &mut [[f32; 2]],
+    height: impl Fn(usize) -> Option<f32>,
+) {
+    for (ix, row) in out.iter_mut().enumerate() {
+        for (k, region) in [Region::Left, Region::Right].into_iter().enumerate() {
+            values.clear();
+            values.extend(
+                f.strips(region)
+                    .filter_map(|iy| height(f.spec.cell(ix, iy))),
+            );
+            row[k] = median(values);
+        }
+    }
+}
+
+/// The median of `values` (reordered in place: a selection, not a sort; it runs
+/// for every row of both tracks); NaN when empty.
+pub(crate) fn median(values: &mut [f32]) -> f32 {
+    let n = values.len();
+    if n == 0 {
+        return f32::NAN;
+    }
+    let (below, &mut mid, _) = values.select_nth_unstable_by(n / 2, f32::total_cmp);
+    if n % 2 == 1 {
+        mid
+    } else {
+        // The other middle value is the largest below it.
+        let lower = below.iter().copied().max_by(f32::total_cmp).unwrap_or(mid);
+        0.5 * (lower + mid)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_median_by_selection_is_the_sorted_middle() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        assert!(median(&mut []).is_nan());
+        for len in 1..=14 {
+            for _ in 0..50 {
+                // Few distinct values, so that ties are common.
+                let mut v: Vec<f32> = (0..len)
+                    .map(|_| f32::from(rng.gen_range(-4i8..4)) * 0.01)
+                    .collect();
+                let mut sorted = v.clone();
+                sorted.sort_unstable_by(f32::total_cmp);
+                let n = sorted.len();
+                let want = if n % 2 == 1 {
+                    sorted[n / 2]
+                } else {
+                    0.5 * (sorted[n / 2 - 1] + sorted[n / 2])
+                };
+                assert_eq!(median(&mut v), want, "{sorted:?}");
+            }
+        }
+    }
+}

@@ -1,0 +1,566 @@
+//! Steps and slopes along one wheel track's strip: where the wheel rests on each cell,
+//! and whether what it climbs is a step, a slope too steep, or ground it crosses.
+
+use super::{line_fit, Region, StripCell, ROUGH_LINE_RMS_M};
+use crate::analysis::plane::{Plane, PlaneFit};
+use crate::verdict::{Hazard, HazardKind, Verdict};
+
+/// Where a wheel of radius `r` rests on each cell of a strip: the lowest point of a
+/// wheel centred over the cell, held up by whatever stands within `r` of it along
+/// the strip (`z_j − (r − √(r² − dx²))`, the rim's height over a neighbour at dx).
+/// A dip narrower than the wheel is bridged and a pebble is climbed from the ground
+/// the wheel stands on, not from the bottom of the dip beside it; a step still rises
+/// by its full height within a wheel radius. Neighbours across a hole or past the
+/// horizon do not count (their heights are unknown or only bounds).
+pub(super) fn wheel_heights(strip: &mut [StripCell], r: f32) {
+    for i in 0..strip.len() {
+        let (xi, mut h) = (strip[i].x, strip[i].z);
+        if !strip[i].past {
+            let rim = |j: usize| {
+                (!strip[j].past)
+                    .then(|| on_rim(strip[j].z, (strip[j].x - xi).abs(), r))
+                    .flatten()
+            };
+            for j in (0..i).rev() {
+                if strip[j + 1].ix > strip[j].ix + 1 {
+                    break;
+                }
+                let Some(z) = rim(j) else { break };
+                h = h.max(z);
+            }
+            // The first cell of a run is where the strip's view of the ground starts:
+            // the wheel comes to it over that ground carried on (what is before it is
+            // not seen; the gap and hidden-rise tests judge that), so a face ahead does
+            // not hold it up. Held up, a step a cell or two past the image's bottom
+            // edge or a shadow is seen only from near its top.
+            let run_start = i == 0 || strip[i].ix > strip[i - 1].ix + 1;
+            for j in (i + 1..strip.len()).take_while(|_| !run_start) {
+                if strip[j].ix > strip[j - 1].ix + 1 {
+                    break;
+                }
+                let Some(z) = rim(j) else { break };
+                h = h.max(z);
+            }
+        }
+        strip[i].wheel = h;
+    }
+}
+
+/// Where the bottom of a wheel of radius `r` stands, metres, when its rim rests on
+/// ground at height `z` that lies `dx` metres (horizontally) before or behind its axle;
+/// `None` when that ground is beyond the rim's reach.
+fn on_rim(z: f32, dx: f32, r: f32) -> Option<f32> {
+    (dx < r).then(|| z - (r - (r * r - dx * dx).sqrt()))
+}
+
+/// Steps and slopes along one strip's seen cells (see
+/// [`steps_and_slopes`](super::steps_and_slopes)).
+pub(super) fn strip_hazards(
+    strip: &[StripCell],
+    region: Region,
+    (r, tan_max, wheelbase, min_gap): (f32, f32, f32, usize),
+    vs: f32,
+    verdict: &mut Verdict,
+) {
+    // No pair differs by more than `r` from a cell within `r` of the strip's highest
+    // and lowest wheels: such a cell is skipped without looking at its pairs.
+    let (low, high) = strip
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), c| {
+            (lo.min(c.wheel), hi.max(c.wheel))
+        });
+    let all_finite = strip.iter().all(|c| c.wheel.is_finite());
+    for (i, a) in strip.iter().enumerate() {
+        let (xi, zi) = (a.x, a.wheel);
+        if all_finite && high - zi <= r && zi - low <= r {
+            continue;
+        }
+        for (j, b) in strip.iter().enumerate().skip(i + 1) {
+            let (xj, zj) = (b.x, b.wheel);
+            let (dx, dz) = (xj - xi, zj - zi);
+            if dz.abs() <= r {
+                continue;
+            }
+            if holey(&strip[i..=j], min_gap) {
+                break; // unseen ground in between: the gap test judges it
+            }
+            if (dz > 0.0 && a.past) || (dz < 0.0 && b.past) {
+                break; // a bound that proves nothing: the view ends here
+            }
+            if dx > 0.0 && dz.abs() >= tan_max * dx {
+                let kind = if dx <= 3.5 * vs {
+                    // A window on one line under the limit: a rough ramp's bumps. Every
+                    // window on one line over it: a ramp too steep, not a step (which
+                    // leaves no window on one line).
+                    let line = line_windows(strip, i, j, wheelbase.min(STEP_WINDOW_MAX_M))
+                        .reduce(f32::min);
+                    match line {
+                        Some(k) if k < tan_max => None,
+                        Some(_) => Some((HazardKind::Slope, xi)),
+                        None => Some((HazardKind::Step, 0.5 * (xi + xj))),
+                    }
+                } else if sustained(&strip[i..=j])
+                    && climb_slope(strip, i, j, (wheelbase, r, min_gap)) >= tan_max
+                {
+                    Some((HazardKind::Slope, xi))
+                } else {
+                    None // flat, then a jump: a step, found from nearer cells
+                };
+                let Some((kind, at)) = kind else { break };
+                verdict.add_hazard(Hazard {
+                    kind,
+                    side: region.side(),
+                    distance_m: at.max(0.0),
+                });
+            }
+            break;
+        }
+    }
+}
+
+/// Whether consecutive seen cells of a run are `min_gap` or more unseen cells apart
+/// somewhere (a hole the gap test judges: what lies there is unknown, so no slope or
+/// step is measured across it). Across a shorter hole, which the gap test leaves
+/// alone, the step test measures: a step down seen from high above hides only the
+/// cell just past its edge (a 22 cm step 0.57 m out under a camera 0.93 m high),
+/// and the ground beyond, seen a wheel radius lower, proves the fall.
+fn holey(run: &[StripCell], min_gap: usize) -> bool {
+    run.windows(2).any(|w| w[1].ix > w[0].ix + min_gap)
+}
+
+/// Whether every cell between the ends lies on the straight line between them
+/// (within [`SLOPE_STRAIGHTNESS_M`]): a slope, not flat ground and a jump.
+fn sustained(run: &[StripCell]) -> bool {
+    let (Some(a), Some(b)) = (run.first(), run.last()) else {
+        return false;
+    };
+    let k = (b.wheel - a.wheel) / (b.x - a.x);
+    run.iter()
+        .all(|c| (c.wheel - (a.wheel + k * (c.x - a.x))).abs() <= SLOPE_STRAIGHTNESS_M)
+}
+
+/// The slope |dz/dx| of the ground a run `strip[i..=j]` climbs. A run a wheel radius
+/// high is only 4-5 cells, where ±2.5 cm of roughness swings the slope by 5-10°: when
+/// a wheelbase of contiguous seen cells starting at the run's start, or ending at its
+/// end, lies on one line within rough ground's spread (RMS residual up to
+/// [`ROUGH_LINE_RMS_M`]), the ground is that line and its least-squares slope counts
+/// (the gentler of the two when both are lines), and so does a window on one line
+/// but for a stone under a wheel radius standing on it ([`stone_windows`]).
+/// Otherwise the run's own: a short steep bank and the flat beside it are not one
+/// line, and keep their steepness.
+///
+/// Where the view ends less than a wheelbase past the run's start, so that no such
+/// window is seen, the ground from a hinge before the run to where the view ends
+/// counts instead when it is long enough ([`view_end_slope`]).
+fn climb_slope(
+    strip: &[StripCell],
+    i: usize,
+    j: usize,
+    (wheelbase, r, min_gap): (f32, f32, usize),
+) -> f32 {
+    line_windows(strip, i, j, wheelbase)
+        .chain(stone_windows(strip, i, j, (wheelbase, r, min_gap)))
+        .chain(view_end_slope(strip, i, j, wheelbase))
+        .fold(fitted_slope(&strip[i..=j]), f32::min)
+}
+
+/// The slope |dz/dx| of a rough ramp that rises out of the view less than 0.9 of a
+/// wheelbase past the run `strip[i..=j]`, so that [`line_windows`] has no window
+/// ahead: over the wheelbase of contiguous cells seen whole that ends where the view
+/// does (the next cell past the horizon, or none), the best two lines joined at a
+/// hinge at or before the run's start (the ground before the ramp's toe, the ramp
+/// after it), when they explain the cells within rough ground's spread
+/// ([`ROUGH_LINE_RMS_M`]) and the ramp's line is at least [`VIEW_END_RAMP_M`] long;
+/// the ramp line's slope plus twice its standard error (so a rough ramp just over
+/// the limit is not let through by its bumps: over 0.45 m of ramp on ±2.5 cm
+/// ground the standard error is about 1.3°). A ramp's own slope, not a dip-to-bump
+/// run's: on ±2.5 cm ground 0.2 m of a 24° ramp can climb 32°. A short bank and the
+/// flat above it are not one line after the hinge, and keep their steepness; so does
+/// a ramp seen for less than [`VIEW_END_RAMP_M`].
+fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Option<f32> {
+    if strip[i].past {
+        return None;
+    }
+    let mut end = if strip[j].past { j - 1 } else { j };
+    while end + 1 < strip.len() && joined(strip, end, 1) {
+        end += 1;
+    }
+    let view_ends = end + 1 == strip.len() || strip[end + 1].past;
+    if !view_ends || end < i || strip[end].x - strip[i].x >= 0.9 * wheelbase {
+        return None;
+    }
+    let mut start = i;
+    while start > 0 && joined(strip, start - 1, 1) && strip[end].x - strip[start - 1].x <= wheelbase
+    {
+        start -= 1;
+    }
+    let window = &strip[start..=end];
+    // Two cells at least on the line before the hinge, so that it is a line.
+    (start + 2..=i)
+        .filter(|&h| strip[end].x - strip[h].x >= VIEW_END_RAMP_M)
+        .filter_map(|h| {
+            let hinge = strip[h].x;
+            let mut fit = PlaneFit::default();
+            for c in window {
+                let (x, after) = (f64::from(c.x), f64::from((c.x - hinge).max(0.0)));
+                fit.add(x, after, f64::from(c.wheel), 1.0);
+            }
+            let p = fit.solve()?;
+            let ss: f64 = window
+                .iter()
+                .map(|c| {
+                    let after = f64::from((c.x - hinge).max(0.0));
+                    (f64::from(c.wheel) - p.z(f64::from(c.x), after)).powi(2)
+                })
+                .sum();
+            let n = window.len() as f64;
+            // The ramp line's slope, raised by twice its standard error: the line
+            // must be climbable with confidence, not by the luck of the bumps.
+            let ramp = || {
+                window
+                    .iter()
+                    .map(|c| f64::from(c.x))
+                    .filter(|&x| x >= f64::from(hinge))
+            };
+            let (k, sum) = ramp().fold((0.0, 0.0), |(k, s), x| (k + 1.0, s + x));
+            let spread: f64 = ramp().map(|x| (x - sum / k).powi(2)).sum();
+            let sigma = (ss / (n - 3.0).max(1.0)).sqrt();
+            let slope = (p.a + p.b).abs() + 2.0 * sigma / spread.sqrt();
+            Some(((ss / n).sqrt(), slope as f32))
+        })
+        .filter(|&(rms, _)| rms <= f64::from(ROUGH_LINE_RMS_M))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, slope)| slope)
+}
+
+/// Whether strip cells `k` and `k + 1` are at most `step` rows apart (1: neighbouring
+/// rows), both seen whole (not past the horizon): a window of [`line_windows`],
+/// [`stone_windows`] or [`view_end_slope`] runs on.
+fn joined(strip: &[StripCell], k: usize, step: usize) -> bool {
+    strip[k + 1].ix <= strip[k].ix + step && !strip[k].past && !strip[k + 1].past
+}
+
+/// Least length of a ramp's line for [`view_end_slope`], metres: over 0.4 m, ±2.5 cm
+/// ground moves a line's slope by about 2° (one σ); over 0.25 m by 5°.
+const VIEW_END_RAMP_M: f32 = 0.4;
+
+/// The slopes |dz/dx| of the windows about a run `strip[i..=j]` that lie on one line
+/// (see [`climb_slope`]): a wheelbase of contiguous cells seen whole starting at the
+/// run's start, and one ending at its end, each when at least 0.9 wheelbase long.
+fn line_windows(
+    strip: &[StripCell],
+    i: usize,
+    j: usize,
+    wheelbase: f32,
+) -> impl Iterator<Item = f32> + '_ {
+    windows(strip, i, j, wheelbase, 1).filter_map(line_slope)
+}
+
+/// The slopes |dz/dx| of the windows about a run `strip[i..=j]` (as [`line_windows`],
+/// but stepping over holes shorter than `min_gap` cells) that lie on one line but for
+/// a stone on it ([`line_under_stones`]): a 6 cm rock 0.25 m up a 17° ramp leaves no
+/// window on one line (it stands off the line, and its shadow breaks the window), and
+/// the run from the toe to its top climbed 31°: a `slope` (`sweep -- families 150 6921
+/// random 10` #82, clean and noisy). The stone, under a wheel radius, is a step the
+/// wheel climbs.
+fn stone_windows(
+    strip: &[StripCell],
+    i: usize,
+    j: usize,
+    (wheelbase, r, min_gap): (f32, f32, usize),
+) -> impl Iterator<Item = f32> + '_ {
+    windows(strip, i, j, wheelbase, min_gap).filter_map(move |w| line_under_stones(w, r))
+}
+
+/// The windows of [`line_windows`]: a wheelbase of cells seen whole starting at the
+/// run `strip[i..=j]`'s start and one ending at its end, each at least 0.9 wheelbase
+/// long, consecutive cells at most `step` rows apart.
+fn windows(
+    strip: &[StripCell],
+    i: usize,
+    j: usize,
+    wheelbase: f32,
+    step: usize,
+) -> impl Iterator<Item = &[StripCell]> + '_ {
+    let mut end = j;
+    while end + 1 < strip.len()
+        && joined(strip, end, step)
+        && strip[end + 1].x - strip[i].x <= wheelbase
+    {
+        end += 1;
+    }
+    // A run may end on a cell past the horizon (its height only a bound): the window
+    // behind it ends on the last cell seen whole. When that is the run's start, the
+    // window holds none of the run's rise (flat ground before a post whose front the
+    // view ends on read as a gentle line, and the post as a rough ramp's bump: a go):
+    // there is no window behind.
+    let last = if strip[j].past && j > i { j - 1 } else { j };
+    let mut start = i;
+    while start > 0
+        && joined(strip, start - 1, step)
+        && strip[last].x - strip[start - 1].x <= wheelbase
+    {
+        start -= 1;
+    }
+    let behind = (last > i || !strip[j].past).then(|| &strip[start..=last]);
+    [Some(&strip[i..=end]), behind]
+        .into_iter()
+        .flatten()
+        .filter(|w| w.iter().all(|c| !c.past))
+        .filter(move |w| w[w.len() - 1].x - w[0].x >= 0.9 * wheelbase)
+}
+
+/// The slope |dz/dx| of a window's ground when its wheel heights lie on one line
+/// within [`ROUGH_LINE_RMS_M`] once a stone on it is left out: the cell standing
+/// highest above the line is left out and the line refitted until it holds, leaving
+/// out at most a third of the window, never its first or last cell (ground on the
+/// line before and after the stone: not a climb going on), and no cell stands a
+/// wheel radius `r` above the line (a stone the wheel climbs, judged by the step
+/// test). Cells below the line are never left out: a bank's flat foot and its top
+/// are not one line with a stone. `None` otherwise, or for a window over 64 cells.
+fn line_under_stones(run: &[StripCell], r: f32) -> Option<f32> {
+    let n = run.len();
+    if n > 64 {
+        return None;
+    }
+    let off = |p: &Plane, c: &StripCell| c.wheel - p.z(f64::from(c.x), 0.0) as f32;
+    let mut out = 0u64;
+    loop {
+        let kept = run
+            .iter()
+            .enumerate()
+            .filter(move |(k, _)| out & (1 << k) == 0);
+        let (line, rms) = line_fit(kept.clone().map(|(_, c)| (c.x, c.wheel)))?;
+        if rms <= f64::from(ROUGH_LINE_RMS_M) {
+            let under_r = run.iter().all(|c| off(&line, c) < r);
+            return under_r.then_some(line.a.abs() as f32);
+        }
+        let (k, above) = kept
+            .map(|(k, c)| (k, off(&line, c)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))?;
+        let dropped = out.count_ones() as usize + 1;
+        if above <= 0.0 || k == 0 || k == n - 1 || 3 * dropped > n {
+            return None;
+        }
+        out |= 1 << k;
+    }
+}
+
+/// The least-squares slope |dz/dx| of a run's wheel heights when they lie on one line
+/// within [`ROUGH_LINE_RMS_M`], else `None`.
+fn line_slope(run: &[StripCell]) -> Option<f32> {
+    let (p, rms) = line_fit(run.iter().map(|c| (c.x, c.wheel)))?;
+    (rms <= f64::from(ROUGH_LINE_RMS_M)).then_some(p.a.abs() as f32)
+}
+
+/// Longest window for the step test's line (see
+/// [`steps_and_slopes`](super::steps_and_slopes)), metres: over a window this long a step
+/// just over a wheel radius leaves an RMS of at least 2.6 cm about its best line (with
+/// the step anywhere in it), well over [`ROUGH_LINE_RMS_M`]; a longer window would dilute
+/// it.
+const STEP_WINDOW_MAX_M: f32 = 0.6;
+
+/// The least-squares slope |dz/dx| of a run's wheel heights: on rough ground the
+/// ends of a run may sit on a dip and a bump, steeper than the ground between.
+fn fitted_slope(run: &[StripCell]) -> f32 {
+    wheel_line(run).map_or(0.0, |p| p.a.abs() as f32)
+}
+
+/// The least-squares line `z = a·x + c` through a run's wheel heights (as a plane with
+/// b = 0); `None` with fewer than two distinct x.
+fn wheel_line(run: &[StripCell]) -> Option<Plane> {
+    let mut fit = PlaneFit::default();
+    for c in run {
+        fit.add(f64::from(c.x), 0.0, f64::from(c.wheel), 1.0);
+    }
+    fit.solve()
+}
+
+/// How far a cell may sit off the line for a run to count as one slope, metres.
+const SLOPE_STRAIGHTNESS_M: f32 = 0.03;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const VS: f32 = 0.05;
+
+    /// A strip of seen cells 5 cm apart at heights `z`.
+    fn strip(z: &[f32]) -> Vec<StripCell> {
+        z.iter()
+            .enumerate()
+            .map(|(i, &z)| StripCell {
+                x: 1.0 + 0.05 * i as f32,
+                z,
+                ix: 20 + i,
+                past: false,
+                wheel: z,
+            })
+            .collect()
+    }
+
+    /// The hazards `strip_hazards` reports on a strip at heights `z(x)`, x from 1.0 m
+    /// in 5 cm cells (wheel radius 0.11 m, limit 30°, wheelbase 0.6 m).
+    fn hazards_on(z: impl Fn(f32) -> f32) -> Vec<Hazard> {
+        let mut run = strip(&(0..30).map(|i| z(0.05 * i as f32)).collect::<Vec<_>>());
+        wheel_heights(&mut run, 0.11);
+        let mut v = Verdict::default();
+        strip_hazards(
+            &run,
+            Region::Left,
+            (0.11, 30f32.to_radians().tan(), 0.6, 2),
+            VS,
+            &mut v,
+        );
+        v.hazards.to_vec()
+    }
+
+    /// The slope hazards of [`hazards_on`].
+    fn slopes(z: impl Fn(f32) -> f32) -> Vec<Hazard> {
+        let mut h = hazards_on(z);
+        h.retain(|h| h.kind == HazardKind::Slope);
+        h
+    }
+
+    /// The hazards `strip_hazards` reports on flat ground at z = 0 from 1.0 m that
+    /// falls by `fall` after `hole` unseen cells past 1.45 m (gaps from 2 cells).
+    fn across_hole(hole: usize, fall: f32) -> Vec<Hazard> {
+        let mut run: Vec<StripCell> = (0..10)
+            .map(|i| (i, 0.0))
+            .chain((10 + hole..30).map(|i| (i, fall)))
+            .map(|(i, z)| StripCell {
+                x: 1.0 + 0.05 * i as f32,
+                z,
+                ix: 20 + i,
+                past: false,
+                wheel: z,
+            })
+            .collect();
+        wheel_heights(&mut run, 0.11);
+        let mut v = Verdict::default();
+        let limits = (0.11, 30f32.to_radians().tan(), 0.6, 2);
+        strip_hazards(&run, Region::Right, limits, VS, &mut v);
+        v.hazards.to_vec()
+    }
+
+    #[test]
+    fn a_fall_across_a_hole_shorter_than_a_gap_is_a_step_and_across_a_gap_is_not_measured() {
+        // One unseen cell (a step's shadow seen from high above): the fall is measured.
+        let h = across_hole(1, -0.22);
+        assert_eq!(h.len(), 1, "{h:?}");
+        assert_eq!(
+            (h[0].kind, h[0].side),
+            (HazardKind::Step, crate::verdict::Side::Right)
+        );
+        assert!((h[0].distance_m - 1.5).abs() < 0.06, "{h:?}");
+        // Under a wheel radius, it is driven down.
+        assert!(across_hole(1, -0.09).is_empty());
+        // Two or more unseen cells are a gap: the gap test judges it, not this one.
+        assert!(across_hole(2, -0.22).is_empty());
+        assert!(across_hole(0, -0.22)
+            .iter()
+            .any(|h| h.kind == HazardKind::Step));
+    }
+
+    /// A pseudo-random bump field of ±2.5 cm, correlated over ~10 cm.
+    fn rough(x: f32) -> f32 {
+        0.0125 * ((x * 41.0).sin() + (x * 67.0 + 1.3).sin()) + 0.005 * (x * 131.0).sin()
+    }
+
+    #[test]
+    fn rough_ground_on_a_climbable_slope_is_not_a_slope_hazard() {
+        let k = 25f32.to_radians().tan();
+        // The wheel-radius runs on the bumps are steeper than 30° somewhere...
+        let mut run = strip(
+            &(0..30)
+                .map(|i| k * 0.05 * i as f32 + rough(0.05 * i as f32))
+                .collect::<Vec<_>>(),
+        );
+        wheel_heights(&mut run, 0.11);
+        let steepest = run.windows(4).map(fitted_slope).fold(0.0, f32::max);
+        assert!(
+            steepest > 30f32.to_radians().tan(),
+            "{}",
+            steepest.atan().to_degrees()
+        );
+        // ...but the wheelbase they lie on is a 25° line.
+        assert!(slopes(|x| k * x + rough(x)).is_empty());
+    }
+
+    #[test]
+    fn slopes_past_the_limit_stop_long_or_short() {
+        for deg in [32f32, 35.0] {
+            let k = deg.to_radians().tan();
+            assert!(!slopes(|x| k * x).is_empty(), "{deg}° slope");
+            assert!(
+                !slopes(|x| k * x + rough(x)).is_empty(),
+                "rough {deg}° slope"
+            );
+        }
+        // A 34° bank 0.45 m long, then flat: its wheelbase fit is under 30°, but the
+        // bank and the flat are not one line.
+        let k = 34f32.to_radians().tan();
+        assert!(!slopes(|x| k * x.clamp(0.3, 0.75)).is_empty());
+    }
+
+    #[test]
+    fn a_ramp_too_steep_that_rises_a_wheel_radius_within_a_few_cells_is_a_slope_not_a_step() {
+        // From its toe 1.5 m out, a ramp of 37-50° rises a wheel radius within three
+        // cells, as a step does; but the ground past its toe lies on one line.
+        for deg in [37f32, 40.0, 50.0] {
+            let k = deg.to_radians().tan();
+            for bumps in [0.0, 1.0] {
+                let h = hazards_on(|x| k * (x - 0.5).max(0.0) + bumps * rough(x));
+                let first = nearest(&h).expect("a ramp over the limit stops");
+                assert_eq!(
+                    first.kind,
+                    HazardKind::Slope,
+                    "{deg}° (bumps {bumps}): {h:?}"
+                );
+                // Where the wheel first touches it: up to a wheel radius before.
+                assert!((1.39..=1.55).contains(&first.distance_m), "{deg}°: {h:?}");
+            }
+        }
+        // Steps of 15-30 cm (on rough ground too), and a 45° bank 15 cm high with the
+        // flat above it, are steps.
+        for z in [
+            |x: f32| if x > 0.5 { 0.15 } else { 0.0 },
+            |x: f32| if x > 0.5 { 0.3 } else { 0.0 },
+            |x: f32| if x > 0.5 { 0.2 + rough(x) } else { rough(x) },
+            |x: f32| (x - 0.5).clamp(0.0, 0.15),
+        ] {
+            let h = hazards_on(z);
+            assert_eq!(nearest(&h).map(|h| h.kind), Some(HazardKind::Step), "{h:?}");
+        }
+    }
+
+    /// The nearest of `hazards` (the one that decides the verdict).
+    fn nearest(hazards: &[Hazard]) -> Option<&Hazard> {
+        hazards
+            .iter()
+            .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m))
+    }
+
+    #[test]
+    fn a_wheel_bridges_a_dip_but_meets_a_step_in_full() {
+        let r = 0.11;
+        // A 5 cm dip before a 9 cm pebble on flat ground: 14 cm from the dip's bottom,
+        // but the wheel resting over the dip is held up by the ground beside it.
+        let mut s = strip(&[0.0, 0.0, -0.05, 0.09, 0.0, 0.0]);
+        wheel_heights(&mut s, r);
+        assert!(s[2].wheel > -0.02, "{:?}", s[2]);
+        assert!((s[3].wheel - 0.09).abs() < 1e-6);
+        let rise = s[3].wheel - s.iter().map(|c| c.wheel).fold(f32::INFINITY, f32::min);
+        assert!(rise <= r, "the wheel climbs {rise} m");
+        // A 15 cm step: the wheel's lowest point still rises by all of it.
+        let mut s = strip(&[0.0, 0.0, 0.0, 0.0, 0.15, 0.15, 0.15, 0.15]);
+        wheel_heights(&mut s, r);
+        assert_eq!(s[0].wheel, 0.0);
+        assert!((s[7].wheel - s[0].wheel - 0.15).abs() < 1e-6);
+        // Across a hole nothing holds the wheel up.
+        let mut s = strip(&[0.0, 0.2]);
+        s[1].ix += 2;
+        wheel_heights(&mut s, r);
+        assert_eq!(s[0].wheel, 0.0);
+    }
+}

@@ -1,0 +1,344 @@
+//! What a cell's points say about its surfaces: a face along the strip and the ground
+//! beside it, a wall's fringe past the horizon, one surface sloping across the cell.
+
+use super::ROUGH_SPREAD_M;
+use crate::grid::Cell;
+
+/// Whether a cell past the horizon holds only the fringe of the face along its strip
+/// that the strip's last seen cell showed (`wall`: that cell's x, top and top's y,
+/// metres, the top the highest of the run of cells that showed it; x moved on to each
+/// cut cell after it holding only that fringe). The cell's upper band is under
+/// [`crate::grid::SURFACE_MIN_SHARE`] of its points (`crest` is `foot`), or centres
+/// on the face's line too (the fringe is a surface of its own, but the floor's few
+/// points, drawn toward the wall by noise, centre too close to it for
+/// [`ground_beside_face`] to tell the two apart: `sweep -- families 100 5701 random`
+/// #47, noisy, an 18 cm `step` 2.80 m out); it lies within [`WALL_REACH_M`] of that
+/// x; its top stands no higher than the face's did (within rough ground's spread,
+/// [`ROUGH_SPREAD_M`]); and its top voxel hugs the strip's side
+/// ([`FACE_OFF_VOXELS`] off its centre line `y_mid`) on the face's line (within that
+/// much of the face's top). Its top is then
+/// the wall's, not a bound on the strip's ground: a trench's wall along the
+/// corridor's edge, its top level with the ground beside the trench, ran on into the
+/// cells the image's top edge cuts and made the floor "rise" to it (`sweep --
+/// families 100 5401 random` #91, `oblique 100 5403` #44 noisy). Anything new there
+/// still bounds the strip: a top higher than the wall's, off its line (a post
+/// standing in the strip), or a surface across the cell.
+pub(super) fn wall_goes_on(cell: &Cell, wall: Option<[f32; 3]>, y_mid: f32, vs: f32) -> bool {
+    let side = FACE_OFF_VOXELS * vs;
+    (cell.top_xy[1] - y_mid).abs() >= side
+        && wall.is_some_and(|[x, top, top_y]| {
+            let on_line = |y: f32| (y - top_y).abs() <= side;
+            (cell.crest == cell.foot || on_line(cell.crest_xy[1]))
+                && cell.x - x <= WALL_REACH_M
+                && cell.top <= top + ROUGH_SPREAD_M
+                && on_line(cell.top_xy[1])
+        })
+}
+
+/// Whether a cell seen whole holds the fringe of a face along its strip standing more
+/// than a wheel radius `r` above its ground `z`: one surface (the face's points are
+/// under [`crate::grid::SURFACE_MIN_SHARE`] of the cell's, `crest` is `foot`), and a
+/// top over `z` by more than `r` whose voxel hugs the strip's side
+/// ([`FACE_OFF_VOXELS`] off its centre line `y_mid`). Depth noise scatters a trench
+/// wall's points on the corridor's edge over more voxel layers, so that in some of its
+/// cells they no longer make a band of their own; the wall is still there, and the
+/// cells the image's top edge cuts past it hold its fringe ([`wall_goes_on`]): without
+/// it, their tops read as a rise of the floor (`sweep -- families 100 5606 random` #3,
+/// noisy: a 16 cm `step` 2.35 m out).
+pub(super) fn fringe_of_wall(cell: &Cell, z: f32, y_mid: f32, r: f32, vs: f32) -> bool {
+    cell.crest == cell.foot
+        && cell.top - z > r
+        && (cell.top_xy[1] - y_mid).abs() >= FACE_OFF_VOXELS * vs
+}
+
+/// The floor's height in a cell past the horizon that holds a wall's fringe
+/// ([`wall_goes_on`]), metres: its lower surface, or, where `foot` is not one (it is
+/// the cell's mean or its upper surface), its lowest voxel (a bound, and past the
+/// horizon the lower one proves less). `foot` falls back to the mean when neither
+/// band holds a surface (a tall face's points spread over so many voxel layers that
+/// neither band holds a quarter of them), and to `crest` when only the upper band
+/// does; either is then the face, not the floor. A one-track descent's 43 cm side
+/// face on the corridor's edge, in the first cell the image's top edge cuts, read
+/// 15 cm above the floor and made a `step` (`sweep -- oblique 100 5903` #57, the
+/// mean); a 37 cm one, 30 cm above it (`oblique 100 6203` #66, the upper band). A
+/// cell of one surface gives its mean for both too; its lowest voxel lies within a
+/// voxel of it.
+pub(super) fn floor_beside_fringe(cell: &Cell) -> f32 {
+    if cell.foot == cell.z || cell.foot == cell.crest {
+        cell.low.min(cell.foot)
+    } else {
+        cell.foot
+    }
+}
+
+/// How far past the last cell that showed a face along the strip (or its fringe)
+/// [`wall_goes_on`] takes it to run on, metres: three cells.
+const WALL_REACH_M: f32 = 0.15;
+
+/// In a cell with two surfaces, the ground when the face between them runs along the
+/// strip: the face's points hug one side of the cell while the ground's spread across
+/// it, so the surface whose points centre farther off the strip's centre line is the
+/// face (the wall of a trench under the track, the side of a ramp beside the belly
+/// band). `None` when the surfaces are close, or when they are offset more forward
+/// than sideways (a face across the strip: a step, judged by the strip's course).
+pub(crate) fn ground_beside_face(cell: &Cell, y_mid: f32, vs: f32) -> Option<f32> {
+    if cell.crest - cell.foot < FACE_MIN_M {
+        return None;
+    }
+    let dx = cell.crest_xy[0] - cell.foot_xy[0];
+    let dy = cell.crest_xy[1] - cell.foot_xy[1];
+    let off_crest = (cell.crest_xy[1] - y_mid).abs();
+    let off_foot = (cell.foot_xy[1] - y_mid).abs();
+    let (face, ground) = if off_crest > off_foot {
+        (off_crest, off_foot)
+    } else {
+        (off_foot, off_crest)
+    };
+    if dy.abs() <= dx.abs() || face < FACE_OFF_VOXELS * vs || face - ground < SIDE_MIN_VOXELS * vs {
+        return None;
+    }
+    Some(if off_crest < off_foot {
+        cell.crest
+    } else {
+        cell.foot
+    })
+}
+
+/// The ground of a cell holding a face along its strip that [`ground_beside_face`]
+/// cannot resolve ([`unresolved_face_along`]): a face seen is turned to the camera,
+/// so when its points hug the cell's side away from the camera the ground beyond
+/// that side is higher and the cell's ground is its lowest voxel (a trench's wall on
+/// the corridor's edge, whose points outnumber the floor's there so far that both of
+/// the cell's bands lie on the wall); when they hug the side toward the camera, the
+/// cell's ground is its highest voxel (a ramp's side beside the belly band). `None`
+/// for any other cell, or when the camera is right above the strip.
+///
+/// For a cell [`ground_beside_face`] already gave nothing for.
+pub(super) fn unresolved_ground(
+    cell: &Cell,
+    (x_mid, y_mid): (f32, f32),
+    vs: f32,
+    camera_y: f32,
+) -> Option<f32> {
+    if !hugs_one_side(cell, x_mid, y_mid, vs) || (camera_y - y_mid).abs() <= 0.5 * vs {
+        return None;
+    }
+    let away = (cell.y - y_mid).signum() != (camera_y - y_mid).signum();
+    Some(if away { cell.low } else { cell.top })
+}
+
+/// Whether a cell holds a face along its strip whose ground its two surfaces do not
+/// give: its points span more than [`FACE_MIN_M`] and hug one side of the cell
+/// (their mean off the strip's centre line by [`FACE_OFF_VOXELS`], and off the row's
+/// by at most half that: a face along the strip, not a corner of one across it), but
+/// [`ground_beside_face`] cannot tell the bands apart. Its mean height
+/// belongs to neither the ground nor the face's other side. `x_mid`, `y_mid`: the
+/// cell's centre, metres.
+pub(crate) fn unresolved_face_along(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> bool {
+    hugs_one_side(cell, x_mid, y_mid, vs) && ground_beside_face(cell, y_mid, vs).is_none()
+}
+
+/// The side test of [`unresolved_face_along`], without the band test.
+fn hugs_one_side(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> bool {
+    let off_y = (cell.y - y_mid).abs();
+    cell.top - cell.low >= FACE_MIN_M
+        && off_y >= FACE_OFF_VOXELS * vs
+        && (cell.x - x_mid).abs() <= 0.5 * FACE_OFF_VOXELS * vs
+}
+
+/// Whether a cell holds one surface sloping across its strip, not two surfaces with a
+/// face between: its points span more than [`FACE_MIN_M`], spread evenly across the
+/// cell (their mean within [`SPREAD_OFF_VOXELS`] of the strip's centre line `y_mid`:
+/// a face's points pull it toward the cell's side) and over their span (their mean
+/// height within [`SPREAD_MID_SHARE`] of its middle: a flat surface beside a face
+/// pulls it toward that surface); its upper and lower bands centre on opposite sides
+/// of the points' mean, apart more sideways than forward (a face across the strip
+/// parts them forward) by at least [`SIDE_MIN_VOXELS`]; or, when only one band holds
+/// a surface, its top voxel lies to one side by half [`FACE_OFF_VOXELS`]. The cell's
+/// mean height is then the ground's on the strip's centre line (exact for a plane).
+pub(super) fn slopes_across(cell: &Cell, y_mid: f32, vs: f32) -> bool {
+    let span = cell.top - cell.low;
+    if span < FACE_MIN_M
+        || (cell.y - y_mid).abs() > SPREAD_OFF_VOXELS * vs
+        || (cell.z - 0.5 * (cell.top + cell.low)).abs() > SPREAD_MID_SHARE * span
+    {
+        return false;
+    }
+    if cell.crest == cell.foot {
+        return (cell.top_xy[1] - cell.y).abs() >= 0.5 * FACE_OFF_VOXELS * vs;
+    }
+    let (dx, dy) = (
+        cell.crest_xy[0] - cell.foot_xy[0],
+        cell.crest_xy[1] - cell.foot_xy[1],
+    );
+    (cell.crest_xy[1] - cell.y) * (cell.foot_xy[1] - cell.y) < 0.0
+        && dy.abs() > dx.abs()
+        && dy.abs() >= SIDE_MIN_VOXELS * vs
+}
+
+/// Most sideways offset of the mean of a cell's points from the strip's centre line
+/// for [`slopes_across`], voxels: a ramp's sloping side put it within 0.1 of a voxel,
+/// a vertical side's points beside the ramp's top 0.13-0.3 (`sweep -- families 100
+/// 5501 random` #99 and #97; where they pull it less, the height test tells).
+const SPREAD_OFF_VOXELS: f32 = 0.15;
+/// Most offset of a cell's mean height from the middle of its span for
+/// [`slopes_across`], a share of the span: up to 0.13 on a ramp's sloping side (the
+/// voxel layers move its top and low), 0.23-0.33 on a ramp's top beside its vertical
+/// side (#97, #99).
+const SPREAD_MID_SHARE: f32 = 0.2;
+
+/// Least height between a cell's two surfaces for [`ground_beside_face`] to tell
+/// them apart, metres: above rough ground's spread within one cell.
+const FACE_MIN_M: f32 = 0.04;
+/// Least sideways offset of a face's points from the strip's centre line for
+/// [`ground_beside_face`], voxels: a face hugs the cell's side (0.5), a surface spread
+/// across the cell centres on it (0), whatever the noise.
+pub(super) const FACE_OFF_VOXELS: f32 = 0.3;
+/// Least difference of the two surfaces' sideways offsets for [`ground_beside_face`],
+/// voxels.
+const SIDE_MIN_VOXELS: f32 = 0.2;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A cell centred at (1.025, 0.675) with the given surfaces and their centroids.
+    fn cell(crest: f32, crest_xy: [f32; 2], foot: f32, foot_xy: [f32; 2]) -> Cell {
+        Cell {
+            n: 100,
+            x: 1.025,
+            y: 0.675,
+            z: 0.5 * (crest + foot),
+            top: crest,
+            top_xy: crest_xy,
+            low: foot,
+            crest,
+            foot,
+            crest_xy,
+            foot_xy,
+        }
+    }
+
+    const VS: f32 = 0.05;
+    const MID: f32 = 0.675;
+
+    #[test]
+    fn a_cell_whose_one_surface_slopes_across_reads_its_mean_but_a_face_beside_ground_does_not() {
+        // A ramp's side sloping across the cell, 0.5 to 0.95 of its 39 cm height over
+        // its width (`sweep -- bevelled 60 904 default 0` #24, 1.525 m): the points
+        // spread evenly, the bands lie either side of the middle.
+        let mut c = cell(0.331, [1.026, MID - 0.014], 0.214, [1.024, MID + 0.016]);
+        (c.z, c.top, c.low, c.top_xy) = (0.274, 0.354, 0.187, [1.038, MID - 0.020]);
+        assert!(slopes_across(&c, MID, VS));
+        // The same with too few points in its lower band for a surface: one band.
+        let mut one = c;
+        (one.foot, one.foot_xy) = (one.crest, one.crest_xy);
+        assert!(slopes_across(&one, MID, VS));
+        // The mean pulled toward the top: a flat surface with a vertical face's points
+        // beside it (the ramp's top and its sharp side, `families 100 5501 random` #97).
+        let mut face = one;
+        (face.z, face.low) = (0.325, 0.03);
+        assert!(!slopes_across(&face, MID, VS));
+        // The points' mean off the middle: a face hugging the cell's side.
+        let mut hug = c;
+        hug.y = MID + 0.01;
+        assert!(!slopes_across(&hug, MID, VS));
+        // The bands apart forward rather than sideways: a face across the strip.
+        let mut step = c;
+        (step.crest_xy, step.foot_xy) = ([1.045, MID - 0.005], [1.005, MID + 0.005]);
+        assert!(!slopes_across(&step, MID, VS));
+        // Within rough ground's spread: no slope to read.
+        let mut flat = c;
+        flat.top = flat.low + 0.03;
+        assert!(!slopes_across(&flat, MID, VS));
+    }
+
+    #[test]
+    fn a_wall_along_the_strip_leaves_the_floor_as_ground() {
+        // A trench's outer wall at y = 0.7: its points (the crest) hug the side.
+        let c = cell(-0.05, [1.025, 0.698], -0.20, [1.025, 0.680]);
+        assert_eq!(ground_beside_face(&c, MID, VS), Some(-0.20));
+        // A ramp's side face at the cell's inner edge: the foot hugs the side.
+        let c = cell(0.30, [1.025, 0.676], 0.12, [1.025, 0.652]);
+        assert_eq!(ground_beside_face(&c, MID, VS), Some(0.30));
+    }
+
+    #[test]
+    fn a_face_across_the_strip_or_close_surfaces_are_left_to_the_strip() {
+        // A step's face: the crest lies behind the foot, not beside it.
+        let c = cell(0.15, [1.040, 0.690], 0.0, [1.008, 0.675]);
+        assert_eq!(ground_beside_face(&c, MID, VS), None);
+        // Rough ground: two bands 3 cm apart are one surface.
+        let c = cell(0.02, [1.025, 0.699], -0.01, [1.025, 0.675]);
+        assert_eq!(ground_beside_face(&c, MID, VS), None);
+        // Both bands spread across the cell: no side to hug.
+        let c = cell(0.10, [1.025, 0.682], 0.0, [1.025, 0.672]);
+        assert_eq!(ground_beside_face(&c, MID, VS), None);
+    }
+
+    #[test]
+    fn a_seen_cell_shows_a_wall_by_its_top_alone_only_at_the_strips_side() {
+        // One surface, the floor 22 cm under the belly's level; the wall's points too
+        // few for a band of their own, its top voxel at the strip's side.
+        let floor = |top: f32, top_y: f32| Cell {
+            top,
+            top_xy: [1.025, top_y],
+            ..cell(-0.22, [1.025, 0.675], -0.22, [1.025, 0.675])
+        };
+        let r = 0.11;
+        assert!(fringe_of_wall(&floor(0.0, 0.698), -0.22, MID, r, VS));
+        // A top a wheel radius or less over the floor, or on the strip's centre line.
+        assert!(!fringe_of_wall(&floor(-0.12, 0.698), -0.22, MID, r, VS));
+        assert!(!fringe_of_wall(&floor(0.0, 0.68), -0.22, MID, r, VS));
+        // Two surfaces: the wall is one of its own, judged by ground_beside_face.
+        let two = cell(-0.05, [1.025, 0.698], -0.20, [1.025, 0.680]);
+        assert!(!fringe_of_wall(&two, -0.20, MID, r, VS));
+    }
+
+    #[test]
+    fn a_cut_cell_reads_as_the_wall_only_where_its_top_runs_on_along_the_wall() {
+        // The strip's last seen cell: the wall at y = 0.7, its top at 0 over a floor
+        // 22 cm down, 5 cm back.
+        let wall = Some([0.975, 0.0, 0.699]);
+        // A cut cell of floor whose top (too few points for a surface) is the wall's.
+        let floor = |top: f32, top_y: f32| Cell {
+            top,
+            top_xy: [1.025, top_y],
+            ..cell(-0.22, [1.025, 0.675], -0.22, [1.025, 0.675])
+        };
+        assert!(wall_goes_on(&floor(-0.03, 0.697), wall, MID, VS));
+        // Noise-lifted by up to rough ground's spread, still the wall.
+        assert!(wall_goes_on(&floor(0.012, 0.697), wall, MID, VS));
+        // Higher than the wall: something new stands there.
+        assert!(!wall_goes_on(&floor(0.03, 0.697), wall, MID, VS));
+        // A top on the strip's centre line or off the wall's line: a post in the strip.
+        assert!(!wall_goes_on(&floor(-0.05, 0.675), wall, MID, VS));
+        assert!(!wall_goes_on(&floor(-0.05, 0.652), wall, MID, VS));
+        // No wall before it, or the wall seen too far back.
+        assert!(!wall_goes_on(&floor(-0.03, 0.697), None, MID, VS));
+        assert!(!wall_goes_on(
+            &floor(-0.03, 0.697),
+            Some([0.8, 0.0, 0.699]),
+            MID,
+            VS
+        ));
+        // An upper band with points enough to be a surface is judged as one.
+        let surface = Cell {
+            top: -0.03,
+            top_xy: [1.025, 0.697],
+            ..cell(-0.05, [1.045, 0.675], -0.22, [1.010, 0.675])
+        };
+        assert!(!wall_goes_on(&surface, wall, MID, VS));
+        // An upper band on the wall's line is the wall's fringe, over the floor, even
+        // where the floor's points centre too near the wall for the two to be told
+        // apart as a face and the ground beside it.
+        let fringe = |crest_y: f32| Cell {
+            top: -0.03,
+            top_xy: [1.025, 0.697],
+            ..cell(-0.05, [1.020, crest_y], -0.20, [1.023, 0.688])
+        };
+        assert_eq!(ground_beside_face(&fringe(0.697), MID, VS), None);
+        assert!(wall_goes_on(&fringe(0.697), wall, MID, VS));
+        assert!(!wall_goes_on(&fringe(0.680), wall, MID, VS));
+    }
+}

@@ -1,0 +1,520 @@
+//! Ground the camera should have seen and did not: gaps, drop-offs, and the shadows,
+//! grazing views and pixel rows that explain a missing cell.
+
+use nalgebra::Vector3;
+
+use super::hidden::BLIND_FIT_M;
+use super::{line_fit, Frame, Region, ROUGH_LINE_RMS_M};
+use crate::analysis::plane::PlaneFit;
+use crate::analysis::visibility;
+use crate::grid::Cell;
+use crate::verdict::{Hazard, HazardKind, Verdict};
+
+/// Gaps: runs of cells the camera should see on flat ground, does not, and that are
+/// not in the shadow of something seen in front of them.
+///
+/// - A gap with no ground seen before it in its strip is unknown ground.
+/// - A gap where the surface before it, continued at its slope, would be seen at
+///   grazing incidence (under [`GRAZING_DEG`]) is explained: a passable downslope
+///   seen from afar gives few points per cell, not none because of a hole.
+/// - A gap after seen ground with nothing seen beyond it, or with ground beyond it
+///   more than a wheel radius below the ground before it (its last cell, that
+///   cell's slope continued, and the line through the last cells), is a drop-off.
+/// - A gap with ground beyond it at a climbable level is the shadow of a low step
+///   down when that ground explains it (the line of sight to the gap at the far
+///   ground's height passes below the near edge); otherwise it is unknown ground.
+/// - Neither is a gap whose every cell fell between the camera's pixel rows
+///   ([`between_rows`]): ground there, continued from before the gap, would be
+///   crossed by under two rows per cell, and the strips on both sides see it.
+///
+/// A track cell's height is the surface its strip followed (`surface`, from
+/// [`steps_and_slopes`](super::steps_and_slopes); NaN elsewhere), other cells' their mean.
+pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
+    let s = f.spec;
+    // A track cell's ground is the surface its strip followed (a face along the
+    // strip mixes two levels in the cell's mean); elsewhere the mean.
+    let ground = |c: usize| {
+        (
+            f.cells[c].x,
+            Some(surface[c])
+                .filter(|z| z.is_finite())
+                .unwrap_or(f.cells[c].z),
+        )
+    };
+    let r = f.cfg.rover.wheel_radius_m as f32;
+    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
+    let min_run = f.cfg.analysis.gap_min_cells as usize;
+    for iy in 0..s.ny {
+        let side = f.region[iy].side();
+        // A track cell seen whole whose ground the strip did not follow holds the
+        // belly band's ground spilled over the band's edge ([`spilled`]): not the
+        // strip's ground, it neither ends a gap nor stands before one.
+        let track = f.region[iy] != Region::Belly;
+        let spilt = |c: usize| track && !f.past[c] && !surface[c].is_finite();
+        // The last seen cells (x, z): the ground before a gap and its slope.
+        let mut before = Recent::default();
+        let mut run: Option<(usize, usize)> = None; // (first ix, length)
+        for ix in 0..=s.nx {
+            let c = (ix < s.nx).then(|| s.cell(ix, iy));
+            let seen_here = c.is_some_and(|c| f.seen[c] && !spilt(c));
+            if seen_here || ix == s.nx {
+                if let Some((start, len)) = run.take() {
+                    if len >= min_run {
+                        let after = c.filter(|_| seen_here).map(ground);
+                        let kind = if before.last().is_none()
+                            && seen_here
+                            && below_view(f, iy, start, ix, ground, tan_max)
+                        {
+                            None
+                        } else {
+                            judge_gap(f, iy, start, ix, before, after, r, tan_max)
+                        };
+                        if let Some(kind) = kind {
+                            verdict.add_hazard(Hazard {
+                                kind,
+                                side,
+                                distance_m: s.origin[0] + start as f32 * s.voxel_m,
+                            });
+                        }
+                    }
+                }
+                if let Some(c) = c.filter(|_| seen_here) {
+                    let (x, z) = ground(c);
+                    before.push(x, z);
+                }
+                continue;
+            }
+            let c = s.cell(ix, iy);
+            if !f.expected[c] {
+                continue; // outside the view: neither seen nor a gap
+            }
+            if f.shadowed[c] || f.beyond[c] {
+                // A shadow or past the horizon: hidden by what is in front.
+                run = None;
+                continue;
+            }
+            run = Some(match run {
+                Some((start, len)) => (start, len + 1),
+                None => (ix, 1),
+            });
+        }
+    }
+}
+
+/// Whether a line of slope `k` through height `z0` at `x0` (metres), continued back to
+/// `origin_x`, stands there at most `rise` (metres) off the rover's ground (z = 0) on the
+/// near side: below it for a rise, above it for a fall. Its toe then lies ahead of
+/// `origin_x`, or so little behind that the ground there is flat by the onset's own
+/// measure. [`blind_rise`](super::blind_rise) and [`below_view`] take a ramp whose toe is
+/// below the image by it.
+pub(super) fn from_rover_ground((k, z0, x0): (f32, f32, f32), origin_x: f32, rise: f32) -> bool {
+    (z0 + k * (origin_x - x0)) * k.signum() <= rise
+}
+
+/// Whether the unseen run `start..end` at the near end of strip `iy` (no ground seen
+/// before it) is ground lowered out of the image: the ground seen from `end` on lies on
+/// one line over [`BLIND_FIT_M`] (within rough ground's spread, [`ROUGH_LINE_RMS_M`]),
+/// descending at a passable slope, which continued back to the grid's near edge stands
+/// there at most `rise_threshold_m` below the rover's ground (z = 0: its toe ahead, or
+/// just behind, as in [`blind_rise`](super::blind_rise)), and at that height (never above
+/// z = 0) no cell of the run falls whole inside the image. The camera sees flat ground
+/// there; a descent whose toe lies below the image drops that ground under the image's
+/// bottom edge, so its first rows see the descent farther out.
+/// [`blind_rise`](super::blind_rise) judges whether such a change below the image is a
+/// ramp. Ground that stays lower than a ramp from the rover's ground would (a drop hidden
+/// below the image, ground level beyond it) is not this: its run stays a gap.
+fn below_view(
+    f: &Frame,
+    iy: usize,
+    start: usize,
+    end: usize,
+    ground: impl Fn(usize) -> (f32, f32),
+    tan_max: f32,
+) -> bool {
+    let s = f.spec;
+    let x0 = s.x_centre(end);
+    let near = || {
+        (end..s.nx)
+            .take_while(|&ix| f.seen[s.cell(ix, iy)] && s.x_centre(ix) <= x0 + BLIND_FIT_M)
+            .map(|ix| ground(s.cell(ix, iy)))
+    };
+    let Some((line, rms)) = line_fit(near()) else {
+        return false;
+    };
+    let (k, z0) = (line.a as f32, line.z(f64::from(x0), 0.0) as f32);
+    let rise = f.cfg.analysis.rise_threshold_m as f32;
+    let toe_ahead = rms as f32 <= ROUGH_LINE_RMS_M
+        && z0 < 0.0
+        && k < 0.0
+        && k > -tan_max
+        && from_rover_ground((k, z0, x0), s.origin[0], rise);
+    toe_ahead
+        && (start..end).all(|j| {
+            let z = (z0 + k * (s.x_centre(j) - x0)).min(0.0);
+            !visibility::in_view(s, f.projector, f.cfg, j, iy, z)
+        })
+}
+
+/// The last few seen cells of a strip, oldest first (a fixed ring: no allocation).
+#[derive(Debug, Default, Clone, Copy)]
+struct Recent {
+    cells: [(f32, f32); Recent::N],
+    len: usize,
+}
+
+impl Recent {
+    const N: usize = 16;
+    /// Cells farther back than this from the last one do not count for the slope.
+    const SPAN_M: f32 = 0.4;
+
+    fn push(&mut self, x: f32, z: f32) {
+        if self.len == Self::N {
+            self.cells.copy_within(1.., 0);
+            self.len -= 1;
+        }
+        self.cells[self.len] = (x, z);
+        self.len += 1;
+    }
+
+    fn last(&self) -> Option<(f32, f32)> {
+        self.len.checked_sub(1).map(|i| self.cells[i])
+    }
+
+    /// The least-squares line z = slope·x + c through every recent cell, as its
+    /// slope, the RMS of the cells' heights about it (metres: how rough the ground
+    /// before a gap is over [`Self::N`] cells) and its height at the last cell
+    /// (metres: the ground there, which one odd cell does not move). `None` with
+    /// fewer than [`ROUGH_MIN_CELLS`] cells or spanning under half a metre.
+    fn line(&self) -> Option<(f32, f32, f32)> {
+        let cells = &self.cells[..self.len];
+        let (x0, xl) = (cells.first()?.0, cells.last()?.0);
+        if self.len < ROUGH_MIN_CELLS || xl - x0 < 0.5 {
+            return None;
+        }
+        let (p, rms) = line_fit(cells.iter().map(|&(x, z)| (x - xl, z)))?;
+        Some((p.a as f32, rms as f32, p.z(0.0, 0.0) as f32))
+    }
+
+    /// Least-squares slope dz/dx of the recent cells within [`Self::SPAN_M`] of the
+    /// last one; 0 with fewer than two.
+    fn slope(&self) -> f32 {
+        let Some((xl, _)) = self.last() else {
+            return 0.0;
+        };
+        // One strip: PlaneFit fits z = a·x + c (b = 0); None with fewer than two x.
+        let mut fit = PlaneFit::default();
+        for &(x, z) in self.cells[..self.len]
+            .iter()
+            .filter(|(x, _)| xl - x <= Self::SPAN_M)
+        {
+            fit.add(f64::from(x - xl), 0.0, f64::from(z), 1.0);
+        }
+        fit.solve().map_or(0.0, |p| p.a as f32)
+    }
+}
+
+/// Below this angle between the line of sight and the surface, a camera gets too
+/// few points to see a cell, degrees.
+pub const GRAZING_DEG: f32 = 6.0;
+
+/// Rough ground's bumps stand up to this many RMS residuals (of the cells before a gap
+/// about their line) above the dips behind them: ±2.5 cm of roughness has an RMS of
+/// about 1.2 cm and 5 cm from crest to trough.
+const BUMP_RMS: f32 = 8.0;
+
+/// Fewest recent cells, over at least half a metre, to judge the ground's roughness.
+const ROUGH_MIN_CELLS: usize = 8;
+
+/// Whether the unseen cells `unseen` of strip `iy` lie on ground that falls away
+/// across the strip so steeply that the camera meets it at under [`GRAZING_DEG`] (or
+/// it faces away). In each cell's row the ground is taken as the line between the
+/// nearest seen cells within [`ACROSS_STRIPS`] on either side ([`across_row`]), one
+/// [`ACROSS_DROP_M`] or more below the other (where the row sees nothing on the low
+/// side, the fall of the row before carried on: [`fall_goes_on`]), sloping `k` along
+/// the strip; and the strip's own last seen ground before them, `last` (row, height
+/// in metres), must lie on such a fall in its row, off its foot by
+/// [`ACROSS_OFF_FOOT_SHARE`] of it: on the slope or at its top, where the ground
+/// falls away beside the strip. At the foot of a wall beside the strip, the shadow
+/// test judges what the wall hides.
+///
+/// The edge of ground falling away beside a track, drawn sloping over 8-14 cm: the
+/// belly band's edge strip holds the slope's upper half, 70° across, and past 2.7 m
+/// its cells get no points (`sweep -- bevelled 60 910 default 2` #0, a `drop_off`).
+/// A pit in a trench's floor along the strip beside the belly band lies between the
+/// belly's ground and the floor too, but the strip before it is on the floor, at the
+/// foot (`belly_ground_spilled_into_a_tracks_edge_strip_ends_no_gap`).
+fn grazing_across(
+    f: &Frame,
+    iy: usize,
+    mut unseen: impl Iterator<Item = usize>,
+    k: f32,
+    (last_ix, last_z): (usize, f32),
+) -> bool {
+    let mut fall = across_row(f, last_ix, iy);
+    let off_foot = fall.is_some_and(|((_, za), (_, zb))| {
+        last_z - za.min(zb) >= ACROSS_OFF_FOOT_SHARE * (za - zb).abs()
+    });
+    let s = f.spec;
+    let c = f.camera;
+    off_foot
+        && unseen.all(|ix| {
+            fall = across_row(f, ix, iy).or_else(|| fall.and_then(|l| fall_goes_on(f, ix, iy, l)));
+            let Some(((ya, za), (yb, zb))) = fall else {
+                return false;
+            };
+            let ky = (zb - za) / (yb - ya);
+            let (x, y) = (s.x_centre(ix), s.y_centre(iy));
+            let z = za + ky * (y - ya);
+            let normal = Vector3::new(-k, -ky, 1.0).normalize();
+            let to_camera = Vector3::new(c[0] - x, c[1] - y, c[2] - z).normalize();
+            normal.dot(&to_camera).asin() < GRAZING_DEG.to_radians()
+        })
+}
+
+/// The fall across of an earlier row, `line` ((y, height) of its two ends, metres),
+/// carried on to row `ix` of strip `iy`, which sees no ground on the fall's low side
+/// within [`ACROSS_STRIPS`]: the ground past the edge lies in the edge's own shadow
+/// there (`sweep -- bevelled 60 6812 random 2` #48, six rows). Only where the row
+/// sees the ground at the fall's top on its high side, within [`ACROSS_STRIPS`] and
+/// half of [`ACROSS_DROP_M`] of the line's top (the edge goes on); the line is moved
+/// to that height.
+fn fall_goes_on(f: &Frame, ix: usize, iy: usize, line: Fall) -> Option<Fall> {
+    let s = f.spec;
+    let ((ya, za), (yb, zb)) = line;
+    let seen_z = |jy: usize| {
+        let c = s.cell(ix, jy);
+        f.seen[c].then_some(f.cells[c].z)
+    };
+    // The high side's strips lie above `iy` when `yb` (the upper end) is the top.
+    let up = zb > za;
+    let z = beside(iy, s.ny, up).find_map(seen_z)?;
+    let shift = z - za.max(zb);
+    (shift.abs() <= 0.5 * ACROSS_DROP_M && beside(iy, s.ny, !up).all(|jy| seen_z(jy).is_none()))
+        .then_some(((ya, za + shift), (yb, zb + shift)))
+}
+
+/// The strips within [`ACROSS_STRIPS`] of strip `iy` on one side, nearest first:
+/// above it (higher index, of `ny`) when `up`, else below.
+fn beside(iy: usize, ny: usize, up: bool) -> impl Iterator<Item = usize> {
+    (1..=ACROSS_STRIPS).filter_map(move |d| {
+        if up {
+            Some(iy + d).filter(|&jy| jy < ny)
+        } else {
+            iy.checked_sub(d)
+        }
+    })
+}
+
+/// The nearest seen cells of row `ix` within [`ACROSS_STRIPS`] of strip `iy` on
+/// either side, (y, mean height) in metres, when one stands [`ACROSS_DROP_M`] or more
+/// above the other.
+///
+/// A cell whose points lie level across its width (their heights within
+/// [`ACROSS_LEVEL_SHARE`] of the fall) holds no part of the fall, which then begins or
+/// ends at its edge facing the strip: its y is taken there. Between cell centres,
+/// a fall 10 cm wide seen across three strips measured 60° for 70°, and the camera
+/// met it at 6.2° for 2° (`sweep -- bevelled 60 6812 random 2` #9, a `drop_off`).
+fn across_row(f: &Frame, ix: usize, iy: usize) -> Option<Fall> {
+    let s = f.spec;
+    let seen_at = |jy: usize| {
+        let c = s.cell(ix, jy);
+        f.seen[c].then_some((jy, f.cells[c]))
+    };
+    let (jb, below) = beside(iy, s.ny, false).find_map(seen_at)?;
+    let (ja, above) = beside(iy, s.ny, true).find_map(seen_at)?;
+    let fall = (below.z - above.z).abs();
+    let half = 0.5 * s.voxel_m;
+    let at = |jy: usize, cell: &Cell, toward: f32| {
+        let level = cell.top - cell.low <= ACROSS_LEVEL_SHARE * fall;
+        let y = s.y_centre(jy) + if level { toward * half } else { 0.0 };
+        (y, cell.z)
+    };
+    (fall >= ACROSS_DROP_M).then(|| (at(jb, &below, 1.0), at(ja, &above, -1.0)))
+}
+
+/// A fall across a strip's row: (y, height) of its two ends, metres, the lower y
+/// first ([`across_row`]).
+type Fall = ((f32, f32), (f32, f32));
+
+/// How many strips to either side [`grazing_across`] looks for seen ground.
+const ACROSS_STRIPS: usize = 3;
+/// Least fall across between those seen cells for [`grazing_across`], metres.
+const ACROSS_DROP_M: f32 = 0.1;
+/// Least share of the fall across that the strip's last seen ground stands over its
+/// foot for [`grazing_across`].
+const ACROSS_OFF_FOOT_SHARE: f32 = 0.1;
+/// Most share of the fall across that a cell's points may span for [`across_row`] to
+/// take it as level, with no part of the fall in it.
+const ACROSS_LEVEL_SHARE: f32 = 0.1;
+
+/// What the unseen run of cells `start..end` in strip `iy` is, given the two seen
+/// cells before it and the first seen cell after it (x, z).
+#[allow(clippy::too_many_arguments)]
+fn judge_gap(
+    f: &Frame,
+    iy: usize,
+    start: usize,
+    end: usize,
+    before: Recent,
+    after: Option<(f32, f32)>,
+    r: f32,
+    tan_max: f32,
+) -> Option<HazardKind> {
+    let s = f.spec;
+    let Some((xb, zb)) = before.last() else {
+        return Some(HazardKind::Unknown);
+    };
+    // The slope of the ground before the gap, only up to passable: a steeper face is
+    // judged by the step and slope test.
+    let k = before.slope().clamp(-tan_max, tan_max);
+    let predicted = |x: f32| zb + k * (x - xb);
+    // The ground before the gap continued from the line through the recent cells (its
+    // slope up to passable), which one odd last cell does not move.
+    let on_line = before.line().map(|(kl, _, zl)| {
+        let kl = kl.clamp(-tan_max, tan_max);
+        move |x: f32| zl + kl * (x - xb)
+    });
+    // The same fall measured from that line: a last cell holding a face's points (a
+    // belly band's edge beside a descending track) stands above the ground and would
+    // make the ground beyond a drop.
+    let below_line = |xa: f32, za: f32| on_line.is_none_or(|z| za < z(xa) - r);
+    let unseen = (start..end).filter(|&j| f.expected[s.cell(j, iy)] && !f.seen[s.cell(j, iy)]);
+    let c = f.camera;
+    let grazing = unseen.clone().all(|j| {
+        let (x, y) = (s.x_centre(j), s.y_centre(iy));
+        let z = predicted(x);
+        let (dx, dy) = (x - c[0], y - c[1]);
+        let d = dx.hypot(dy);
+        let depression = (c[2] - z).atan2(d);
+        let descent = (-k * dx / d).atan();
+        depression - descent < GRAZING_DEG.to_radians()
+    });
+    if grazing && k < 0.0 {
+        return None;
+    }
+    let bumps = || bump_shadow(f, iy, start, end, before);
+    // On ground falling away across the strip, met as grazingly; not where the ground
+    // beyond is seen a wheel radius down (a drop proven, below).
+    let last_ix = s.cell_at(xb, s.y_centre(iy)).map_or(start, |(ix, _)| ix);
+    let across = || grazing_across(f, iy, unseen.clone(), k, (last_ix, zb));
+    // Seen beside the strip where the camera's rows fall too sparsely to give every
+    // cell points.
+    let sampled_out = || {
+        let ground = |j: usize| (predicted(s.x_centre(j)), k);
+        unseen.clone().all(|j| between_rows(f, j, iy, ground(j), r))
+            || sparse_ground(f, iy, unseen.clone().map(|j| (j, ground(j))))
+    };
+    match after {
+        None => {
+            // Nothing seen beyond: a drop-off, unless the ground before the gap,
+            // continued at its slope, would be hidden all along by something seen
+            // (ground falling away beyond an edge beside the strip: a sideways shadow),
+            // or fell between the camera's rows. Continued from the line through the
+            // recent cells too: a last cell of a few stray points (mixed pixels off the
+            // edge above) stands above the ground, and ground continued from it would
+            // be in view.
+            let hidden_at = |z: &dyn Fn(f32) -> f32| {
+                unseen
+                    .clone()
+                    .all(|j| visibility::explained(f, j, iy, z(s.x_centre(j))))
+            };
+            let hidden = hidden_at(&predicted) || on_line.is_some_and(|z| hidden_at(&z));
+            (!hidden && !bumps() && !sampled_out() && !across()).then_some(HazardKind::DropOff)
+        }
+        Some((xa, za)) if za < zb - r && za < predicted(xa) - r && below_line(xa, za) => {
+            Some(HazardKind::DropOff)
+        }
+        Some((_, za)) => {
+            let all_shadowed = unseen.clone().all(|j| visibility::explained(f, j, iy, za));
+            (!all_shadowed && !bumps() && !sampled_out() && !across())
+                .then_some(HazardKind::Unknown)
+        }
+    }
+}
+
+/// Whether unseen cell (`ix`, `iy`), its ground expected at `z` with slope `k`
+/// (dz/dx), fell between the camera's pixel rows: ground there would be crossed by fewer than
+/// [`SPARSE_ROWS`] rows per cell (far, at low incidence, or a coarse camera: a
+/// 320×240 camera's rows lie 5 cm apart on a 12° descent 3 m out), and the strips
+/// on both sides see ground in that row or the next one either way, within a wheel
+/// radius of the ground's slope continued. A drop-off's gap spans the strips beside
+/// it too, from its edge on.
+fn between_rows(f: &Frame, ix: usize, iy: usize, (z, k): (f32, f32), r: f32) -> bool {
+    let s = f.spec;
+    let x = s.x_centre(ix);
+    let beside_seen = [iy.checked_sub(1), Some(iy + 1)].into_iter().all(|side| {
+        side.filter(|&n| n < s.ny).is_some_and(|n| {
+            (ix.saturating_sub(1)..(ix + 2).min(s.nx)).any(|jx| {
+                let c = s.cell(jx, n);
+                f.seen[c] && (f.cells[c].z - (z + k * (f.cells[c].x - x))).abs() <= r
+            })
+        })
+    });
+    beside_seen && rows_per_cell(f, ix, iy, (z, k)) < SPARSE_ROWS
+}
+
+/// How many of the camera's pixel rows cross cell (`ix`, `iy`) of ground at height
+/// `z` with slope `k` (dz/dx): `cell · sin(incidence) · fy / range`.
+fn rows_per_cell(f: &Frame, ix: usize, iy: usize, (z, k): (f32, f32)) -> f32 {
+    let s = f.spec;
+    let cam = f.camera;
+    let (dx, dy) = (s.x_centre(ix) - cam[0], s.y_centre(iy) - cam[1]);
+    let (d, h) = (dx.hypot(dy), cam[2] - z);
+    let range = d.hypot(h);
+    let incidence = h.atan2(d) - (-k * dx / d).atan();
+    s.voxel_m * incidence.sin() * f.fy_px / range
+}
+
+/// Whether the unseen cells `(ix, (z, k))` of strip `iy` (their ground expected at
+/// `z` with slope `k`) are ground the camera's rows cross too sparsely to give a
+/// cell the points it needs, and not a hole: every cell gets under [`SPARSE_ROWS`]
+/// rows, and the few points it got lie on the ground continued (within
+/// [`SPARSE_GROUND_M`]) in at least half the cells and in one of the last two. Rough
+/// ground descending far out, seen from a low camera, gives runs of such cells
+/// several strips wide, where [`between_rows`] finds no seen strip beside them. A
+/// drop-off's shadow gets no points (a ray past the edge meets the lower ground far
+/// beyond), and the lower ground beyond a shadow lies below the continued ground.
+fn sparse_ground(f: &Frame, iy: usize, cells: impl Iterator<Item = (usize, (f32, f32))>) -> bool {
+    let s = f.spec;
+    let (mut n, mut on_ground, mut last_on_ground) = (0usize, 0usize, 0usize);
+    for (ix, (z, k)) in cells {
+        if rows_per_cell(f, ix, iy, (z, k)) >= SPARSE_ROWS {
+            return false;
+        }
+        let c = &f.cells[s.cell(ix, iy)];
+        n += 1;
+        if c.n > 0 && (c.z - (z + k * (c.x - s.x_centre(ix)))).abs() <= SPARSE_GROUND_M {
+            on_ground += 1;
+            last_on_ground = n;
+        }
+    }
+    n > 0 && 2 * on_ground >= n && last_on_ground + 1 >= n
+}
+
+/// How far from the ground continued the few points of a sparsely crossed cell may
+/// lie for [`sparse_ground`], metres: rough ground's peak to peak (±2.5 cm).
+const SPARSE_GROUND_M: f32 = 0.05;
+
+/// Pixel rows per cell under which a cell may get none (rows fall at their own
+/// spacing, the cells at theirs).
+const SPARSE_ROWS: f32 = 2.0;
+
+/// Whether the unseen run `start..end` of strip `iy` is no longer than the shadow that
+/// rough ground's bumps cast at the camera's incidence on the ground before it: a
+/// bump [`BUMP_RMS`] residuals high hides `h / tan(incidence)` behind it. Smooth
+/// ground (even noisy: a cell's mean height varies by millimetres) casts none worth a
+/// cell, so a drop-off's gap there stays a gap.
+fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -> bool {
+    let (Some((k, rms, _)), Some((xb, zb))) = (before.line(), before.last()) else {
+        return false;
+    };
+    let s = f.spec;
+    let c = f.camera;
+    let (x, y) = (s.x_centre(start), s.y_centre(iy));
+    let (dx, dy) = (x - c[0], y - c[1]);
+    let d = dx.hypot(dy);
+    let depression = (c[2] - (zb + k * (x - xb))).atan2(d);
+    let incidence = depression + (k * dx / d).atan();
+    let gap_m = (end - start) as f32 * s.voxel_m;
+    incidence > 0.0 && gap_m * incidence.tan() <= BUMP_RMS * rms
+}

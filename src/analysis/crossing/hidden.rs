@@ -1,0 +1,546 @@
+//! Rises in a track whose top, foot or far side the camera does not see: a boulder
+//! whose far side is hidden, a climb whose foot lies before the view, a climb that
+//! leaves the view too steep to be a ramp.
+
+use super::faces::FACE_OFF_VOXELS;
+use super::gaps::from_rover_ground;
+use super::{
+    followed, line_fit, Frame, Region, ROUGH_LINE_RMS_M, ROUGH_SPREAD_M, UNSEEN_FOOT_MARGIN_M,
+};
+use crate::grid::Cell;
+use crate::verdict::{Hazard, HazardKind, Verdict};
+
+/// Obstacles whose top the camera does not see, standing in a track.
+///
+/// A strip that climbs more than a wheel radius within a wheelbase and then leaves the
+/// view (its next cells unseen: in the shadow of what it climbed, or past the image's
+/// top edge) looks, along that strip alone, like a ramp rising out of the image: its
+/// step test judges only the front it saw, and a boulder's front seen through 5 cm
+/// cells can measure under the slope limit. Across the track the two differ: a ramp
+/// spans the track, so the strips beside rise with it, but a boulder stands on ground
+/// that continues beside it. So when a third or more of what the other strips of the track
+/// within [`HIDDEN_TOP_REACH_M`] see past the exit, within [`HIDDEN_TOP_REACH_M`] of
+/// it, lies more than a wheel radius and a margin for rough ground's bumps
+/// ([`UNSEEN_FOOT_MARGIN_M`]) below the height the climb last reached (its exit, or
+/// the mean of a cell the image's top edge cuts just past it: a lower bound), the
+/// climb is an obstacle higher than a wheel radius with its far side hidden: a step
+/// at its foot (the last cell of the climb at most half a wheel radius above its
+/// lowest).
+///
+/// A diagonal ramp (26° across the rover, 25° steep) moves the strips beside by at
+/// most 6 cm over that lateral distance, well under a wheel radius. The track's two
+/// edge strips take no part: a face along the band's edge (a one-track ramp's side,
+/// the ground beyond a one-track descent) mixes two levels there.
+///
+/// An obstacle as wide as the track hides the ground beside it in its own shadow (a
+/// 40 cm boulder, seen from low). Then the ground the strips see again past the
+/// shadow tells: a ramp goes on rising behind what hid it, but ground past a boulder
+/// is back at its foot. When [`HIDDEN_TOP_BEYOND_STRIPS`] strips of a track, each
+/// climbing more than a wheel radius into its shadow, see ground again past it whose
+/// mean ([`ground_beyond`]) lies more than a wheel radius and rough ground's spread
+/// below the climb's top, the nearest of their climbs is a step at its foot: what
+/// stands there is over a wheel radius high, and its far side is not seen.
+pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
+    let r = f.cfg.rover.wheel_radius_m as f32;
+    let wheelbase = f.cfg.rover.wheelbase_m as f32;
+    let reach = (HIDDEN_TOP_REACH_M / f.spec.voxel_m).round() as usize;
+    let ground = |ix: usize, iy: usize| followed(f, surface, f.spec.cell(ix, iy));
+    for region in [Region::Left, Region::Right] {
+        // Strips whose climb the ground past its shadow shows to be an obstacle, and
+        // the nearest such climb's foot.
+        let (mut beyond_strips, mut beyond_foot) = (0usize, f32::INFINITY);
+        for iy in inner_strips(f, region) {
+            let mut beyond_here = false;
+            for ix in 0..f.spec.nx.saturating_sub(1) {
+                let Some(z_exit) = ground(ix, iy) else {
+                    continue;
+                };
+                if ground(ix + 1, iy).is_some() {
+                    continue;
+                }
+                let top = (ix + 1..(ix + 3).min(f.spec.nx))
+                    .map(|jx| f.spec.cell(jx, iy))
+                    .filter(|&c| f.seen[c] && f.past[c])
+                    .map(|c| f.cells[c].z)
+                    .fold(z_exit, f32::max);
+                let x_exit = f.spec.x_centre(ix);
+                let climb = (0..=ix)
+                    .rev()
+                    .take_while(|&jx| x_exit - f.spec.x_centre(jx) <= wheelbase)
+                    .filter_map(|jx| ground(jx, iy).map(|z| (jx, z)));
+                let Some(base) = climb.clone().map(|(_, z)| z).reduce(f32::min) else {
+                    continue;
+                };
+                if top - base <= r {
+                    continue;
+                }
+                let (mut below, mut all) = (0, 0);
+                for jy in inner_strips(f, region).filter(|&jy| jy != iy && jy.abs_diff(iy) <= reach)
+                {
+                    for jx in ix + 1..(ix + 1 + reach).min(f.spec.nx) {
+                        if let Some(z) = ground(jx, jy) {
+                            all += 1;
+                            below += usize::from(z < top - r - UNSEEN_FOOT_MARGIN_M);
+                        }
+                    }
+                }
+                let foot = climb
+                    .filter(|&(_, z)| z <= base + 0.5 * r)
+                    .map(|(jx, _)| jx)
+                    .max()
+                    .unwrap_or(ix);
+                let foot_m = f.spec.x_centre(foot).max(0.0);
+                if below < HIDDEN_TOP_MIN_CELLS || 3 * below < all {
+                    let past = ground_beyond(f, surface, iy, ix + 1);
+                    if past.is_some_and(|z| z < top - r - UNSEEN_FOOT_MARGIN_M) {
+                        beyond_here = true;
+                        beyond_foot = beyond_foot.min(foot_m);
+                    }
+                    continue;
+                }
+                verdict.add_hazard(Hazard {
+                    kind: HazardKind::Step,
+                    side: region.side(),
+                    distance_m: foot_m,
+                });
+            }
+            beyond_strips += usize::from(beyond_here);
+        }
+        if beyond_strips >= HIDDEN_TOP_BEYOND_STRIPS {
+            verdict.add_hazard(Hazard {
+                kind: HazardKind::Step,
+                side: region.side(),
+                distance_m: beyond_foot,
+            });
+        }
+    }
+}
+
+/// The ground strip `iy` sees again past an unseen run that starts at row `from`
+/// (the shadow of what it climbed): the mean of the followed ground
+/// ([`followed`]) within [`BEYOND_MEAN_M`] of the first cell seen past the run,
+/// metres, so one dip of rough ground does not stand for the level; `None` when the
+/// strip sees no ground past it.
+fn ground_beyond(f: &Frame, surface: &[f32], iy: usize, from: usize) -> Option<f32> {
+    let ground = |ix: usize| followed(f, surface, f.spec.cell(ix, iy)).map(|z| (ix, z));
+    let (first, _) = (from..f.spec.nx).find_map(ground)?;
+    let x0 = f.spec.x_centre(first);
+    let (sum, n) = (first..f.spec.nx)
+        .take_while(|&ix| f.spec.x_centre(ix) - x0 <= BEYOND_MEAN_M)
+        .filter_map(ground)
+        .fold((0.0, 0u32), |(s, n), (_, z)| (s + z, n + 1));
+    Some(sum / n as f32)
+}
+
+/// A rise or fall hidden below the image, or beside it. The rover stands on its
+/// ground (z = 0 at the origin), so a track strip whose nearest seen ground (its
+/// first [`BLIND_FIT_M`]) gets more than a wheel radius (and a margin for rough
+/// ground's bumps, [`UNSEEN_FOOT_MARGIN_M`]) above or below it, or lies on one line
+/// (within [`ROUGH_LINE_RMS_M`]) whose mean level is over a wheel radius from it,
+/// changed height at least partly between the rover and the camera's view, where
+/// nothing is seen (a boulder whose foot is below the image is seen rising from part
+/// of its height; one whose front the image's side edge cuts, from its top), unless
+/// the strip is seen at that ground first (a toe in view: the step and slope test
+/// judges it).
+///
+/// When that seen ground lies on one line over its first [`BLIND_FIT_M`] (within
+/// rough ground's spread, [`ROUGH_LINE_RMS_M`]) and, continued back to the origin at
+/// that passable slope, stands there at most `rise_threshold_m` off z = 0 on the near
+/// side (its toe ahead of the origin, or so little behind it that the rover's ground
+/// there is flat by the onset's measure: a descent met at 60° whose toe line passes
+/// just behind the rover under one track, `sweep -- oblique 100 5503` #98), with and
+/// without its first cell (which the image's bottom edge cuts: a step's top seen with
+/// the upper part of its face fits a gentle line back to the rover), it is a ramp with
+/// its toe below the image (the paper's Table 2 case 3, measured by the feature
+/// analysis).
+/// So is a strip seen from a passable ramp's foot: its first cell within
+/// `rise_threshold_m` of z = 0, and its first [`BLIND_FOOT_M`] on one line meeting
+/// z = 0 ahead in the same way (with and without that cell). What stands on the ramp
+/// after it is seen whole, and the step and slope test judges it (a 5 cm stone 0.37 m
+/// up a 12.7° ramp, whose foot a Kinect v2 saw from 1.5 cm up, lifted the first
+/// 0.3 m off one line and 14 cm high: `sweep -- natural 100 5707 random` #43).
+/// Otherwise (a plateau, a step's top, ground below a fall, a boulder) the change is
+/// unseen: an `unknown` hazard at the nearest such ground, when two or more strips of
+/// a track show it (10 cm: narrower than a wheel; a boulder whose front is below the
+/// image shows it in a few). The track's edge strips take no part
+/// ([`inner_strips`]).
+pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
+    let r = f.cfg.rover.wheel_radius_m as f32;
+    let rise = f.cfg.analysis.rise_threshold_m as f32;
+    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
+    for region in [Region::Left, Region::Right] {
+        let mut hidden = 0usize;
+        let mut nearest = f32::INFINITY;
+        for iy in inner_strips(f, region) {
+            let ground = |ix: usize| {
+                let c = f.spec.cell(ix, iy);
+                followed(f, surface, c).map(|z| (f.cells[c].x, z))
+            };
+            let Some(start) = (0..f.spec.nx).find(|&ix| ground(ix).is_some()) else {
+                continue;
+            };
+            let x0 = f.spec.x_centre(start);
+            let near = || {
+                (start..f.spec.nx)
+                    .map_while(ground)
+                    .take_while(|(x, _)| *x <= x0 + BLIND_FIT_M)
+            };
+            // The line through the stretch's first `len` metres from its `skip`th
+            // cell: slope, height at x0, and whether it holds within rough ground's
+            // spread.
+            let fit = |len: f32, skip: usize| {
+                let points = near().take_while(move |(x, _)| *x <= x0 + len);
+                line_fit(points.skip(skip)).map(|(p, rms)| {
+                    let (k, z0) = (p.a as f32, p.z(f64::from(x0), 0.0) as f32);
+                    (k, z0, rms as f32 <= ROUGH_LINE_RMS_M)
+                })
+            };
+            // Continued back at a passable slope to the origin, it stands there at
+            // most the rise threshold off the rover's ground, on the near side (its
+            // toe ahead of the origin, or so little behind that the ground there is
+            // flat by the onset's measure): a ramp whose toe is below the image.
+            let toe_ahead = |(k, z0, straight): (f32, f32, bool)| {
+                straight
+                    && k * z0 > 0.0
+                    && k.abs() < tan_max
+                    && from_rover_ground((k, z0, x0), 0.0, rise)
+            };
+            // The farthest from the rover's ground the strip gets in that stretch, and
+            // whether it is seen at that ground before (the change is then seen
+            // whole, and the step and slope test judges it).
+            let (mut reach, mut at) = (0.0f32, 0);
+            for (i, (_, z)) in near().enumerate() {
+                if z.abs() > reach.abs() {
+                    (reach, at) = (z, i);
+                }
+            }
+            let from_ground = near().take(at).any(|(_, z)| z.abs() <= ROUGH_SPREAD_M);
+            // Or seen from a passable ramp's foot: its first cell within the rise
+            // threshold of the rover's ground, and its first BLIND_FOOT_M on one line
+            // whose toe is ahead (with and without that cell). What stands on the ramp
+            // past them is seen whole.
+            let from_foot = near().next().is_some_and(|(_, z)| z.abs() <= rise)
+                && fit(BLIND_FOOT_M, 0).is_some_and(toe_ahead)
+                && fit(BLIND_FOOT_M, 1).is_some_and(toe_ahead);
+            // The first cell is the one the image's bottom edge cuts: it may hold
+            // only part of a face (the top of a step whose foot is not seen), so the
+            // ground from the next cell on must tell the same story. Ground that
+            // lies on one line has no bumps to allow for: its mean level over a
+            // wheel radius from the rover's ground is a change that big (a 12 cm
+            // step whose foot is below the image stands level at 12 cm).
+            let (sum, n) = near()
+                .skip(1)
+                .fold((0.0f32, 0.0f32), |(s, n), (_, z)| (s + z, n + 1.0));
+            let rest = fit(BLIND_FIT_M, 1);
+            let level_over = rest.is_some_and(|(_, _, straight)| straight) && (sum / n).abs() > r;
+            if (reach.abs() <= r + UNSEEN_FOOT_MARGIN_M && !level_over) || from_ground || from_foot
+            {
+                continue;
+            }
+            let ramp = fit(BLIND_FIT_M, 0).is_some_and(toe_ahead) && rest.is_none_or(toe_ahead);
+            if !ramp {
+                hidden += 1;
+                nearest = nearest.min(x0);
+            }
+        }
+        if hidden >= 2 {
+            verdict.add_hazard(Hazard {
+                kind: HazardKind::Unknown,
+                side: region.side(),
+                distance_m: nearest.max(0.0),
+            });
+        }
+    }
+}
+
+/// A climb the view ends in, steeper than the rover climbs: how high it goes is not
+/// seen. Where a strip's view ends (its first cell the image's top edge cuts, or seen
+/// past one), the ground it climbed over the last wheelbase before it (over less,
+/// rough ground's bumps steepen a 24° ramp past 30°) and the part of the cut cells
+/// that is seen (their upper surface, `crest`) are fitted with one line from the
+/// last cell at the climb's foot (within rough ground's spread,
+/// [`ROUGH_SPREAD_M`], of the lowest). When that line is steeper than the slope
+/// limit and the cut cells' top stands [`STEEP_EXIT_RISE_M`] or more above the foot,
+/// the strip saw the front of a wall, a step or a ramp too steep to climb, and the
+/// image ended before its top: the step and slope test sees under a wheel radius of
+/// it (or, on a steep ramp, the wheel's rounding at the toe), and the feature analysis
+/// measures a face it cannot call climbable. Two or more inner strips of a track or
+/// of the belly band showing it (10 cm) give an `unknown` hazard at the nearest foot,
+/// unless the other tests already found a hazard on that side or one nearer than the
+/// foot (the rover stops already, and the verdict says why). Runs last of the crossing
+/// tests.
+///
+/// A climb of under [`STEEP_EXIT_RISE_M`] into the cut cells can be a bump of rough
+/// ground in one strip, but not across the band: bumps 10-20 cm long lift two or
+/// three strips at a time. So a steep line over at least [`STEEP_EXIT_SHORT_RISE_M`]
+/// in most inner strips of a band ([`broad`]) is the same unseen front: a 36° ramp
+/// whose toe lies a few centimetres before a low camera's view ends, seen rising
+/// 4.4 cm in every inner strip of its track, was a go. Likewise a cut cell whose
+/// points span [`STEEP_EXIT_RISE_M`] but whose two surfaces depth noise has merged
+/// (`crest` and `foot` both its mean, so the line through it climbs gently), unless
+/// its points hug one side of the cell (a face along the strip): a 12 cm step seen by
+/// a rolled Kinect v1 only where its image's top edge crosses it was a noisy go.
+/// Such cells rising [`STEEP_EXIT_RISE_M`] or more in [`SPREAD_TALL_STRIPS`] strips
+/// count however wide the band: a 21 cm step under a track, seen rising 5-6 cm in
+/// three strips where a rolled camera's view ends across it, was a noisy go.
+/// On smooth ground a front the view ends on, seen from up to two cells before the
+/// cut, counts from a smaller bend ([`bends_up`], in [`BENT_STRIPS`] inner strips).
+/// A ramp rising out of view at a passable slope is not this: it stays go, measured.
+/// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
+/// out of view in them.
+pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
+    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
+    let wheelbase = f.cfg.rover.wheelbase_m as f32;
+    let s = f.spec;
+    let found = [Region::Left, Region::Belly, Region::Right].map(|region| {
+        let (mut tall, mut short, mut nearest) = (0usize, 0usize, f32::INFINITY);
+        let (mut short_nearest, mut inner) = (f32::INFINITY, 0usize);
+        let (mut any_tall, mut any_nearest) = (0usize, f32::INFINITY);
+        let (mut bent, mut bent_nearest) = (0usize, f32::INFINITY);
+        for iy in inner_strips(f, region) {
+            inner += 1;
+            let ground = |ix: usize| {
+                let c = s.cell(ix, iy);
+                let z = if region == Region::Belly {
+                    (f.seen[c] && !f.past[c]).then_some(f.cells[c].z)
+                } else {
+                    followed(f, surface, c)
+                };
+                z.map(|z| (f.cells[c].x, z))
+            };
+            let Some(h) = (1..s.nx).find(|&ix| {
+                let c = s.cell(ix, iy);
+                f.seen[c] && f.past[c]
+            }) else {
+                continue;
+            };
+            let x_h = s.x_centre(h);
+            let before = || {
+                (0..h)
+                    .rev()
+                    .map_while(ground)
+                    .take_while(|&(x, _)| x_h - x <= wheelbase)
+            };
+            let Some(base) = before().map(|(_, z)| z).reduce(f32::min) else {
+                continue;
+            };
+            let Some(foot) = before().find(|&(_, z)| z <= base + ROUGH_SPREAD_M) else {
+                continue;
+            };
+            let cut = (h..(h + 3).min(s.nx))
+                .map(|ix| (ix, s.cell(ix, iy)))
+                .filter(|&(_, c)| f.seen[c] && f.past[c])
+                .map(|(ix, c)| (ix, &f.cells[c]));
+            let top = cut
+                .clone()
+                .map(|(_, c)| c.top)
+                .fold(f32::NEG_INFINITY, f32::max);
+            let rise = top - foot.1;
+            if rise < STEEP_EXIT_SHORT_RISE_M {
+                continue;
+            }
+            // A face across the strip within one cut cell (its points span the rise
+            // in 5 cm: steeper than 45°; its upper surface beyond its lower one more
+            // than beside it, unlike a ramp's side face along the strip), or the climb
+            // and the cut cells' upper surface on one line steeper than the limit (a
+            // face the cell boundary splits, a steep ramp).
+            let spans = |c: &Cell| c.top - c.low >= STEEP_EXIT_RISE_M;
+            let face = cut.clone().any(|(_, c)| {
+                let (dx, dy) = (c.crest_xy[0] - c.foot_xy[0], c.crest_xy[1] - c.foot_xy[1]);
+                spans(c) && dx > dy.abs()
+            });
+            // A face whose points depth noise spreads so that neither band of the
+            // cell is a surface (`crest` and `foot` both the mean) has no orientation
+            // of its own; its points not hugging one side of the cell, it is not
+            // along the strip. Counted only where most of the band shows a front.
+            let y_mid = s.y_centre(iy);
+            let spread = cut.clone().any(|(_, c)| {
+                spans(c)
+                    && c.crest_xy == c.foot_xy
+                    && (c.y - y_mid).abs() < FACE_OFF_VOXELS * s.voxel_m
+            });
+            let climb = before().take_while(|&(x, _)| x > foot.0);
+            let points = std::iter::once(foot)
+                .chain(climb)
+                .chain(cut.clone().map(|(_, c)| (c.crest_xy[0], c.crest)));
+            let steep = face || line_fit(points).is_some_and(|(p, _)| p.a as f32 >= tan_max);
+            if let Some(x) = bends_up(f, iy, h, before(), cut, tan_max) {
+                bent += 1;
+                bent_nearest = bent_nearest.min(x);
+            }
+            if !steep && !spread {
+                continue;
+            }
+            short += 1;
+            short_nearest = short_nearest.min(foot.0);
+            if rise >= STEEP_EXIT_RISE_M {
+                any_tall += 1;
+                any_nearest = any_nearest.min(foot.0);
+                if steep {
+                    tall += 1;
+                    nearest = nearest.min(foot.0);
+                }
+            }
+        }
+        let (steep, nearest) = if tall >= 2 {
+            (true, nearest)
+        } else if any_tall >= SPREAD_TALL_STRIPS {
+            (true, any_nearest)
+        } else if bent >= BENT_STRIPS {
+            (true, bent_nearest)
+        } else {
+            (broad(short, inner), short_nearest)
+        };
+        // Judged against the other tests' hazards only: a band beside this one
+        // showing the same wall does not hide it.
+        let judged =
+            (verdict.hazards.iter()).any(|h| h.side == region.side() || h.distance_m <= nearest);
+        (region, steep && !judged, nearest)
+    });
+    for (region, _, nearest) in found.into_iter().filter(|&(_, new, _)| new) {
+        verdict.add_hazard(Hazard {
+            kind: HazardKind::Unknown,
+            side: region.side(),
+            distance_m: nearest.max(0.0),
+        });
+    }
+}
+
+/// Where a strip's view ends (`h`, its first cut cell) on smooth ground, whether the
+/// cut cells show a rise steeper than the rover climbs: the x of the last ground cell
+/// on the smooth ground's line, metres, or `None`.
+///
+/// `before` is the strip's ground over the wheelbase before `h`, one cell after the
+/// other from `h − 1` back (its k-th item is cell `h − 1 − k`); `cut` its seen cells
+/// among the first three from `h`, with their column. The front may
+/// begin up to [`FRONT_CELLS`] ground cells before the cut. For each such start, when
+/// the [`SMOOTH_GROUND_CELLS`] ground cells before it lie on one line within
+/// [`SMOOTH_GROUND_RMS_M`] (no bumps that steepen a short stretch), a cut cell counts
+/// when its top stands [`BEND_RISE_M`] or more above that line carried to the cell's
+/// far edge (off the ground the strip was on), above the line where the front begins
+/// by more than the slope limit `tan_max` climbs from there to the cell's far edge
+/// (the gentlest the rise can be), and [`FRONT_RISING_M`] or more above the front's
+/// cells before the cut (still rising where the view ends: a stone seen whole, its
+/// top before the cut, is the step test's). That is the front of a rock, a wall or a
+/// ramp too steep, cut by the image's top edge: a 15 cm rock on a smooth 15° ramp,
+/// seen rising 3-5 cm before the view ends, and a 19 cm mound on a 10° ramp, seen
+/// rising 8 cm over two cells and into the cut (10.7 cm from its foot, under a wheel
+/// radius), were each a go. Its height is not seen, so a 9 cm pebble there looks the
+/// same.
+fn bends_up<'c>(
+    f: &Frame,
+    iy: usize,
+    h: usize,
+    before: impl Iterator<Item = (f32, f32)> + Clone,
+    cut: impl Iterator<Item = (usize, &'c Cell)> + Clone,
+    tan_max: f32,
+) -> Option<f32> {
+    let s = f.spec;
+    (0..=FRONT_CELLS).find_map(|lead| {
+        let window = before.clone().skip(lead).take(SMOOTH_GROUND_CELLS);
+        if window.clone().count() < SMOOTH_GROUND_CELLS {
+            return None;
+        }
+        let (line, rms) = line_fit(window.clone())?;
+        if rms > f64::from(SMOOTH_GROUND_RMS_M) {
+            return None;
+        }
+        let (last_x, _) = window.clone().next()?;
+        let end = h - 1 - lead;
+        let front_top = (end + 1..h)
+            .map(|ix| f.cells[s.cell(ix, iy)].top)
+            .fold(f32::NEG_INFINITY, f32::max);
+        let on_line = |x: f32| line.z(f64::from(x), 0.0) as f32;
+        let near = s.x_centre(end) + 0.5 * s.voxel_m;
+        let bends = cut.clone().any(|(ix, c)| {
+            let far = s.x_centre(ix) + 0.5 * s.voxel_m;
+            c.top - on_line(far) >= BEND_RISE_M
+                && c.top - on_line(near) >= tan_max * (far - near)
+                && c.top >= front_top + FRONT_RISING_M
+        });
+        bends.then_some(last_x)
+    })
+}
+
+/// Most RMS of a strip's last ground cells about their line for [`bends_up`] to take
+/// them for smooth, metres. Cells average rough ground's bumps (±2.5 cm, 10-20 cm
+/// long), and over 25 cm their means can lie within 2-3 mm of a line (a 20° rough
+/// ramp's belly strips did, and a bump at the view's end was a false stop); a smooth
+/// ramp's lie within 0.4 mm, depth noise included, where a D435-like camera sees them
+/// at 2 m.
+const SMOOTH_GROUND_RMS_M: f32 = 0.001;
+/// How many ground cells before a front [`bends_up`] fits its line to: 20 cm at the
+/// default voxel. The ramp's own line before a front can be that short (a mound's
+/// rising 0.2 m past a 10° ramp's toe). With four cells, as with five, no verdict of
+/// the rough-ground sweeps changed (`sweep -- near_edge 400 30|36 rough`, `families`
+/// and `natural 88 179 random`, `families 300 2 random`, where 4 mm RMS over five
+/// cells had made a false stop).
+const SMOOTH_GROUND_CELLS: usize = 4;
+/// Most ground cells of a front that [`bends_up`] looks for between the smooth
+/// ground's line and the cut: 10 cm, a rock's or a mound's front.
+const FRONT_CELLS: usize = 2;
+/// Least height of a cut cell's top over the tops of the front's cells before the cut
+/// for [`bends_up`], metres: the front still rises where the view ends.
+const FRONT_RISING_M: f32 = 0.01;
+/// Least height of a cut cell's top above the smooth ground's line for [`bends_up`],
+/// metres. The ground carried on into the cell has its top at or under the line at
+/// the cell's far edge; 2 cm leaves room for depth noise, and a rock's front cut
+/// after its first centimetres stands 2-5 cm above it.
+const BEND_RISE_M: f32 = 0.02;
+/// Fewest inner strips of a band whose view ends bending up steeply on smooth ground
+/// ([`bends_up`]) for [`steep_exit`] to take it for an unseen front: 15 cm, so one
+/// or two strips of noise do not count.
+const BENT_STRIPS: usize = 3;
+
+/// Least rise from a climb's foot to the top of the cut cells the view ends in for
+/// [`steep_exit`], metres: more than rough ground's peak to peak (±2.5 cm).
+const STEEP_EXIT_RISE_M: f32 = 0.05;
+/// Least rise for a climb of [`steep_exit`] to count in a band's [`broad`] test,
+/// metres: beyond what depth noise (about 1 cm at 2 m) and a cell's partial view make
+/// of level ground.
+const STEEP_EXIT_SHORT_RISE_M: f32 = 0.03;
+
+/// Fewest strips of a band whose climb into the cut cells rises [`STEEP_EXIT_RISE_M`]
+/// or more and is steep or a face noise spread (see [`steep_exit`]) for that band to
+/// count as showing an unseen front, whatever the band's width: a face along a strip
+/// (a half-plane's side face) spreads the points of the two strips it lies between,
+/// never of three.
+const SPREAD_TALL_STRIPS: usize = 3;
+
+/// Whether `steep` of a band's `inner` strips make most of it (two thirds, and at
+/// least three): a front across the band, not a bump of rough ground (10-20 cm long,
+/// two or three strips) for [`steep_exit`].
+fn broad(steep: usize, inner: usize) -> bool {
+    steep >= 3 && 3 * steep >= 2 * inner
+}
+
+/// How much of a track strip's nearest seen ground [`blind_rise`] fits its slope to,
+/// metres.
+pub(super) const BLIND_FIT_M: f32 = 0.3;
+
+/// How much of a track strip's nearest seen ground [`blind_rise`] takes for a
+/// ramp's foot, metres: three or four cells.
+const BLIND_FOOT_M: f32 = 0.15;
+
+/// How far beside and beyond a climb leaving the view [`hidden_tops`] looks for the
+/// ground it stands on, metres: a boulder's radius.
+const HIDDEN_TOP_REACH_M: f32 = 0.25;
+/// Fewest cells of ground beside a hidden top, more than a wheel radius below it, for
+/// [`hidden_tops`] to take it for an obstacle.
+const HIDDEN_TOP_MIN_CELLS: usize = 3;
+/// Fewest strips of a track whose ground past a climb's shadow lies too low for
+/// [`hidden_tops`] to take the climb for an obstacle: one strip may be a pebble's
+/// narrow top seen beside a dip.
+const HIDDEN_TOP_BEYOND_STRIPS: usize = 2;
+/// Length of ground past a shadow whose mean is its level ([`ground_beyond`]),
+/// metres: three cells, about a bump of rough ground.
+const BEYOND_MEAN_M: f32 = 0.1;
+
+/// The strips of a track but its two edge strips, where a face along the band's edge
+/// mixes two levels ([`hidden_tops`], [`blind_rise`]).
+fn inner_strips<'a>(f: &'a Frame, region: Region) -> impl Iterator<Item = usize> + 'a {
+    let first = f.strips(region).next();
+    let last = f.strips(region).last();
+    f.strips(region)
+        .filter(move |&iy| first.is_some_and(|a| iy > a) && last.is_some_and(|b| iy < b))
+}

@@ -1,0 +1,291 @@
+//! Crossing possibility (paper §3.1, with the fixes docs/design.md lists): slopes and steps
+//! in the wheel tracks, anything too tall under the belly, and ground that should be
+//! seen but is not (gaps, drop-offs).
+
+mod belly;
+mod climb;
+mod faces;
+mod gaps;
+mod hidden;
+
+use super::plane::{Plane, PlaneFit};
+use super::{Frame, Region, StripCell};
+use crate::grid::Cell;
+use crate::verdict::Verdict;
+pub use belly::belly;
+pub(crate) use belly::{median, track_medians};
+use climb::{strip_hazards, wheel_heights};
+use faces::{floor_beside_fringe, fringe_of_wall, slopes_across, unresolved_ground, wall_goes_on};
+pub(crate) use faces::{ground_beside_face, unresolved_face_along};
+pub use gaps::{gaps, GRAZING_DEG};
+pub use hidden::{blind_rise, hidden_tops, steep_exit};
+
+/// Steps and slopes in the wheel tracks.
+///
+/// Along each track strip, from every seen cell, find the first cell ahead whose mean
+/// height differs by more than the wheel radius. If the slope between the two is at
+/// or above the maximum, the terrain is impassable there: a *step* when the change
+/// happens within two cells (≤ 0.1 m at the default voxel), a *slope* otherwise. A
+/// change smaller than the wheel radius is climbable however steep (a low step); a
+/// long climb is impassable only if it is steep.
+///
+/// A cell holding a vertical face (a band edge, a step's front) has two surfaces, the
+/// face's crest and its foot ([`crate::grid::Cell::crest`], [`crate::grid::Cell::foot`];
+/// both the mean for a cell with one surface); its mean belongs to neither. The strip
+/// follows, in each such cell, the surface that continues it (the one nearer the last
+/// cell's height), so a face along the strip (a ramp under the track beside a flat
+/// belly band, a trench) makes no step, while a face across it still does: past the
+/// face the cells have one surface, the other side's.
+///
+/// A cell the image's top edge cuts through holds only the lower part of what stands
+/// there: its top is a lower bound on its height (beside a face along the strip, a
+/// trench's wall on the corridor's edge, the top is the face's: the bound is then
+/// the ground's own surface, [`ground_beside_face`]). So a rise *into* such a cell, or a
+/// fall *out of* it, is measured (the bound proves it), while a fall into it or a
+/// rise out of it proves nothing and is not a hazard: the surface simply left the
+/// view (a ramp rising out of the image, seen past its horizon only by its side face).
+///
+/// `surface` receives, per track cell, the height the strip followed there (NaN for
+/// cells it did not follow: unseen, past the horizon, or not in a track).
+pub fn steps_and_slopes(
+    f: &Frame,
+    strip: &mut Vec<StripCell>,
+    surface: &mut [f32],
+    verdict: &mut Verdict,
+) {
+    surface.fill(f32::NAN);
+    let r = f.cfg.rover.wheel_radius_m as f32;
+    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
+    let wheelbase = f.cfg.rover.wheelbase_m as f32;
+    let vs = f.spec.voxel_m;
+    for region in [Region::Left, Region::Right] {
+        for iy in f.strips(region) {
+            strip.clear();
+            // The last two chosen (x, z): the strip's height and slope so far.
+            let mut last: [Option<(f32, f32)>; 2] = [None, None];
+            // The face along the strip the last seen cell showed, [x, top, top's y]
+            // (a trench's wall); x moves on through cut cells that hold only its
+            // fringe. However high it stood over that cell's ground: a 15 cm wall
+            // read 10.8 cm over its cell's ground, its top voxel's mean under the
+            // wall's top and the ground's mean over the floor with a few of the
+            // face's points, and its fringe in the next cut cell then stood 11.3 cm
+            // over the strip, a `step` (noisy, `sweep -- families 100 6306 random`
+            // #25). A face's fringe can fake a rise only up to its own top.
+            // Its top is the highest the run of cells showing it showed: a cell's top
+            // is the highest voxel layer with enough points, so along one face it
+            // moves by half a voxel from cell to cell (noisy, `sweep -- natural 100
+            // 6202 random` #3: 0 and −2.7 cm on a wall whose top is at 0, and the
+            // next cut cell's 0 no longer on it made a 20 cm `step`).
+            let mut wall: Option<[f32; 3]> = None;
+            // Whether the strip read the last seen cell's mean height: its one
+            // surface sloped across the strip ([`slopes_across`]).
+            let mut sloped = false;
+            for ix in 0..f.spec.nx {
+                let c = f.spec.cell(ix, iy);
+                if !f.seen[c] {
+                    continue;
+                }
+                let cell = &f.cells[c];
+                let past = f.past[c];
+                let carried = continued(last, cell.x, tan_max);
+                let along = ground_along(f, ix, iy, past);
+                // Past the horizon, only the fringe of the wall seen before.
+                let fringe =
+                    past && along.is_none() && wall_goes_on(cell, wall, f.spec.y_centre(iy), vs);
+                // A surface sloping across the strip (a ramp's side drawn sloping, in
+                // the track's edge strip) has no upper and lower surface to choose
+                // from: its bands are parts of one slope, and which of them continues
+                // the strip changes with the share of points each holds. Its mean is
+                // the ground on the strip's centre line. Read from its bands, the
+                // strip jumped 13 cm where the lower band ran short (`sweep --
+                // bevelled 60 904 default 0` #24, a `step`).
+                let mut across = !past && slopes_across(cell, f.spec.y_centre(iy), vs);
+                let z = if across {
+                    cell.z
+                } else if let Some(z) = along {
+                    // Past the horizon a lower bound: beside such a face the top is
+                    // the face's, and the bound the ground's.
+                    z
+                } else if past {
+                    if fringe {
+                        floor_beside_fringe(cell)
+                    } else if sloped {
+                        // Where the strip read the mean up to the horizon, the mean
+                        // of what is seen of the cell past it: its top is the slope's
+                        // high side, which stood 19 cm over the strip and made a
+                        // `step` (#23, #54).
+                        cell.z
+                    } else {
+                        cell.top.max(cell.z)
+                    }
+                } else {
+                    let (z, mean) = continuing(cell, carried, sloped);
+                    across = mean;
+                    z
+                };
+                if !past && spilled(f, ix, iy, z, carried, r) {
+                    // The belly band's ground, not this strip's: leave the cell out.
+                    continue;
+                }
+                if !past {
+                    surface[c] = z;
+                }
+                let highest = wall.map_or(cell.top, |[_, top, _]| top.max(cell.top));
+                wall = match (along, wall) {
+                    (Some(_), _) => Some([cell.x, highest, cell.top_xy[1]]),
+                    (None, Some([_, top, top_y])) if fringe => Some([cell.x, top, top_y]),
+                    (None, _) if !past && fringe_of_wall(cell, z, f.spec.y_centre(iy), r, vs) => {
+                        Some([cell.x, highest, cell.top_xy[1]])
+                    }
+                    _ => None,
+                };
+                if !past {
+                    sloped = across;
+                }
+                last = [last[1], Some((cell.x, z))];
+                strip.push(StripCell {
+                    x: cell.x,
+                    z,
+                    ix,
+                    past,
+                    wheel: z,
+                });
+            }
+            wheel_heights(strip, r);
+            let min_gap = f.cfg.analysis.gap_min_cells as usize;
+            strip_hazards(strip, region, (r, tan_max, wheelbase, min_gap), vs, verdict);
+        }
+    }
+}
+
+/// The ground of seen cell (`ix`, `iy`) beside a face along its strip (a trench's
+/// wall, [`ground_beside_face`]), metres; in a cell seen whole, not `past` the
+/// horizon, also where its two surfaces do not say which ([`unresolved_ground`]).
+fn ground_along(f: &Frame, ix: usize, iy: usize, past: bool) -> Option<f32> {
+    let (cell, vs, y_mid) = (
+        &f.cells[f.spec.cell(ix, iy)],
+        f.spec.voxel_m,
+        f.spec.y_centre(iy),
+    );
+    let beside = ground_beside_face(cell, y_mid, vs);
+    if past {
+        return beside;
+    }
+    beside.or_else(|| unresolved_ground(cell, (f.spec.x_centre(ix), y_mid), vs, f.camera[1]))
+}
+
+/// Of a seen cell's two surfaces, the one that continues the strip (its last height
+/// carried on at its slope, up to passable, `carried`), metres; or, where the strip
+/// read the last cell's mean (`sloped`), this one's mean when it continues the strip
+/// better. Also whether the mean was read. A sloping side's cells do not all pass
+/// [`slopes_across`] (noise and the voxel layers move their bands), and a strip
+/// switching between means and bands jumps by 4-5 cm (#78 of `sweep -- bevelled 100
+/// 901 default 9`, a `slope`).
+fn continuing(cell: &Cell, carried: Option<f32>, sloped: bool) -> (f32, bool) {
+    let near = carried.unwrap_or(cell.foot);
+    let surface = if (cell.crest - near).abs() <= (cell.foot - near).abs() {
+        cell.crest
+    } else {
+        cell.foot
+    };
+    if sloped && (cell.z - near).abs() < (surface - near).abs() {
+        (cell.z, true)
+    } else {
+        (surface, false)
+    }
+}
+
+/// A strip's height carried on to `x` from its last two chosen cells (`last`, (x, z),
+/// oldest first) at their slope, up to passable; the last height with one cell;
+/// `None` with none.
+fn continued(last: [Option<(f32, f32)>; 2], x: f32, tan_max: f32) -> Option<f32> {
+    match last {
+        [Some((x0, z0)), Some((x1, z1))] if x1 > x0 => {
+            let k = ((z1 - z0) / (x1 - x0)).clamp(-tan_max, tan_max);
+            Some(z1 + k * (x - x1))
+        }
+        [_, Some((_, z1))] => Some(z1),
+        _ => None,
+    }
+}
+
+/// Whether track cell (`ix`, `iy`), its ground read as `z`, holds the belly band's
+/// ground spilled over the band edge rather than the strip's: the strip is the track's
+/// edge strip beside the belly band; `z` lies more than a wheel radius from the strip
+/// carried on (`near`) but within [`SPILL_M`] of the belly cell across the edge; and
+/// the next strip inward sees nothing at that level there (its cell, when seen, is
+/// nearer the strip carried on). A track lower than the belly band (a descent under
+/// one track) leaves a wall along the edge, whose top and the belly's ground beside
+/// it, few points far out and scattered by depth noise, can outnumber the track's own
+/// floor in the edge cell; read as its ground they make a step. A rise across the
+/// track (a ditch's far wall, a step) lifts the inner strips too.
+fn spilled(f: &Frame, ix: usize, iy: usize, z: f32, near: Option<f32>, r: f32) -> bool {
+    let s = f.spec;
+    let Some(near) = near else {
+        return false;
+    };
+    let (across, inward) = match f.region[iy] {
+        Region::Left if iy >= 1 && f.region[iy - 1] == Region::Belly => (iy - 1, iy + 1),
+        Region::Right if iy + 1 < s.ny && f.region[iy + 1] == Region::Belly => {
+            (iy + 1, iy.wrapping_sub(1))
+        }
+        _ => return false,
+    };
+    let belly = s.cell(ix, across);
+    if (z - near).abs() <= r || !f.seen[belly] || (z - f.cells[belly].z).abs() > SPILL_M {
+        return false;
+    }
+    let inner_level = (inward < s.ny && f.region[inward] == f.region[iy])
+        .then(|| s.cell(ix, inward))
+        .filter(|&c| f.seen[c])
+        .map(|c| f.cells[c].z);
+    inner_level.is_none_or(|zi| (zi - near).abs() < (zi - z).abs())
+}
+
+/// How close an edge cell's ground must come to the belly band's beside it to be that
+/// ground spilled over ([`spilled`]), metres: rough ground's peak to peak.
+const SPILL_M: f32 = 0.05;
+
+/// Rough ground's spread about its mean, metres (σ ≈ 1.25 cm for ±2.5 cm): ground
+/// within it of a level counts as at that level.
+const ROUGH_SPREAD_M: f32 = 0.015;
+/// How much more than a wheel radius a rise whose foot or far side is not seen must
+/// stand over the ground it is measured from to be an obstacle, metres
+/// ([`blind_rise`], [`hidden_tops`], and the face analysis's step relief): midway
+/// between the tallest pebble the rover drives over on rough ground (9 cm on a
+/// 2.5 cm bump, 11.5 cm up) and the lowest rock it must stop at (15 cm in a 2.5 cm
+/// dip, 12.5 cm up), over the default 11 cm wheel radius. With 1.5 cm (rough
+/// ground's spread) instead, a 15.6 cm rock whose front the image's side edge cut,
+/// seen 12.4 cm over the rover's ground in one inner strip and 14.3 cm in the next,
+/// was a go (`sweep -- families 100 6801 random` #7).
+pub(crate) const UNSEEN_FOOT_MARGIN_M: f32 = 0.01;
+/// The ground the strip followed in cell `c` (`surface`, from [`steps_and_slopes`]),
+/// metres, when the cell is seen whole: not past the horizon, and in a track.
+fn followed(f: &Frame, surface: &[f32], c: usize) -> Option<f32> {
+    (f.seen[c] && !f.past[c])
+        .then_some(surface[c])
+        .filter(|z| z.is_finite())
+}
+
+/// Largest RMS distance of wheel heights from their line for a climb's slope
+/// (`climb::climb_slope`) to take them as one slope, metres: rough ground's spread (σ ≈
+/// 1.25 cm for ±2.5 cm), under what a bank steeper than the limit and shorter than the
+/// wheelbase leaves (≥ 1.5 cm for banks whose wheelbase fit falls under 30°).
+const ROUGH_LINE_RMS_M: f32 = 0.016;
+
+/// The least-squares line z = a·x + c through `points` (x, z), and the RMS of their
+/// heights about it, metres; `None` without two distinct x.
+fn line_fit(points: impl Iterator<Item = (f32, f32)> + Clone) -> Option<(Plane, f64)> {
+    let mut fit = PlaneFit::default();
+    for (x, z) in points.clone() {
+        fit.add(f64::from(x), 0.0, f64::from(z), 1.0);
+    }
+    let p = fit.solve()?;
+    let (ss, n) = points.fold((0.0, 0.0), |(ss, n), (x, z)| {
+        (
+            ss + (f64::from(z) - p.z(f64::from(x), 0.0)).powi(2),
+            n + 1.0,
+        )
+    });
+    Some((p, (ss / n).sqrt()))
+}
