@@ -827,6 +827,49 @@ fn a_pebble_on_lumpy_ground_fitted_as_a_step_along_the_track_is_climbed() {
 }
 
 #[test]
+fn a_stone_whose_foot_lies_in_a_dip_of_lumpy_ground_is_climbed() {
+    // A Kinect v2 1.17 m high, pitched 41° and rolled 6°, over lumpy ground with
+    // stones. An 8.7 cm stone in the left track stands 12.2 cm over the 2 cm dip at
+    // its foot, but within a wheel radius of the ground before it and a margin for its
+    // bumps (`sweep -- natural 200 6824 random 6` #151, clean and noisy, stopped by a
+    // `slope`). The same stone 15 cm high stops.
+    let mut c = kinect_v2(mounted([0.2944, 0.0315, 1.1691], [6.2241, 41.2933, 1.9687]));
+    c.camera.min_range_m = 0.3332;
+    let stone = |x_m, y_m, radius_m, height_m, shape| Element::Stone {
+        x_m,
+        y_m,
+        radius_m,
+        height_m,
+        shape,
+    };
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.110_430_467,
+                seed: 11_292_676_210_325_382_132,
+            },
+            stone(1.0420, -0.4041, 0.1330, 0.0865, StoneShape::Cap),
+            stone(1.2378, 0.4096, 0.1597, height_m, StoneShape::Boulder),
+            stone(2.5749, 0.3052, 0.1264, 0.0709, StoneShape::Boulder),
+            stone(1.9509, -0.4065, 0.0947, 0.0526, StoneShape::Cone),
+            stone(1.2706, -0.5700, 0.1285, 0.0722, StoneShape::Mound),
+        ]
+    };
+    for v in analyse_views(field(0.0874), &c, [None, Some(6_824_151)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?} {:?}", v.hazards, v.feature);
+    }
+    for v in analyse_views(field(0.15), &c, [None, Some(6_824_151)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Left),
+            "{:?}",
+            v.hazards
+        );
+    }
+}
+
+#[test]
 fn a_stone_on_a_climbable_ramp_is_climbed_and_the_ramp_measured() {
     // A Kinect v2 0.5 m high, pitched 38° and yawed −8.8°, sees a 17.2° ramp whose
     // toe is 1.44 m out, a 5.9 cm rock 0.24 m up it in the left track. From the toe to
