@@ -870,6 +870,51 @@ fn a_stone_whose_foot_lies_in_a_dip_of_lumpy_ground_is_climbed() {
 }
 
 #[test]
+fn a_stone_with_a_broad_dip_of_lumpy_ground_past_it_is_climbed_down() {
+    // A 320×240 camera 1.0 m high, rolled 9.2° and yawed 6.3°, over lumpy ground with
+    // stones. Past an 8.6 cm stone in the right track the ground lies in a dip 0.3 m
+    // wide, then rises 4.5 cm: from the stone's top the strip falls 11.7 cm, over a
+    // wheel radius, into the dip. Over the wheelbase past it the ground is level within
+    // its bumps (`sweep -- natural 200 7022 random 6` #187, clean and noisy, a `step`).
+    // The same stone 15 cm high stops.
+    let mut c = mounted([0.2248, 0.0351, 1.0024], [9.1610, 31.9609, 6.3007]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.3655;
+    let stone = |x_m, y_m, radius_m, height_m, shape| Element::Stone {
+        x_m,
+        y_m,
+        radius_m,
+        height_m,
+        shape,
+    };
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.127_293_035,
+                seed: 12_951_764_189_611_123_638,
+            },
+            stone(2.7682, -0.4385, 0.1260, 0.0651, StoneShape::Cap),
+            stone(2.2553, -0.6016, 0.1025, 0.0747, StoneShape::Mound),
+            stone(1.2041, -0.5053, 0.1171, height_m, StoneShape::Cap),
+            stone(1.2313, 0.3736, 0.1578, 0.0838, StoneShape::Cone),
+            stone(2.7799, 0.5242, 0.0767, 0.0426, StoneShape::Cap),
+        ]
+    };
+    for v in analyse_views(field(0.0863), &c, [None, Some(7_022_187)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?} {:?}", v.hazards, v.feature);
+    }
+    for v in analyse_views(field(0.15), &c, [None, Some(7_022_187)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Right),
+            "{:?}",
+            v.hazards
+        );
+    }
+}
+
+#[test]
 fn a_stone_on_a_climbable_ramp_is_climbed_and_the_ramp_measured() {
     // A Kinect v2 0.5 m high, pitched 38° and yawed −8.8°, sees a 17.2° ramp whose
     // toe is 1.44 m out, a 5.9 cm rock 0.24 m up it in the left track. From the toe to

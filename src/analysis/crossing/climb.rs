@@ -82,7 +82,7 @@ pub(super) fn strip_hazards(
                 continue;
             }
             let foot = if dz > 0.0 { i } else { j };
-            if dz.abs() - rough_at_foot(strip, foot, dz > 0.0) <= r {
+            if dz.abs() - rough_at_foot(strip, foot, dz > 0.0, wheelbase) <= r {
                 continue; // a wheel radius or less over the ground the wheel comes from
             }
             if holey(&strip[i..=j], min_gap) {
@@ -122,34 +122,34 @@ pub(super) fn strip_hazards(
     }
 }
 
-/// How much of a rise's (or fall's) height over its foot (`strip[foot]`: a rise's
-/// lowest cell, `rise`, or a fall's) is rough ground's, not the obstacle's, metres.
-/// The ground on the foot's side of it (the contiguous cells seen whole up to
-/// [`FOOT_LEVEL_M`] before a rise's foot, or after a fall's, the foot included) is
-/// level ground when it spans at most rough ground's peak to peak (twice
-/// [`FOOT_DIP_MAX_M`]) over at least [`FOOT_LEVEL_MIN_CELLS`] cells and lies on one
-/// line within rough ground's spread ([`ROUGH_LINE_RMS_M`]). Then the wheels come to
-/// the rise from that line, not from the bottom of a dip at its foot: how far the
-/// foot's wheel height lies under the line (at most [`FOOT_DIP_MAX_M`]) does not
-/// count, nor does the line's own RMS spread up to [`UNSEEN_FOOT_MARGIN_M`] (the
-/// margin for rough ground's bumps that a rise whose foot is not seen gets: what
-/// stands within it of a wheel radius over the ground is within the bumps of a 9 cm
-/// pebble). An 8.7 cm stone whose foot lies in a 2 cm dip of lumpy ground stood
-/// 12.2 cm over the dip, a `slope` (`sweep -- natural 200 6824 random 6` #151); a
-/// 15 cm stone, or a step of a wheel radius and more over the ground's level, still
-/// stands over it. Other ground there (a ramp, a trench's floor and the ground
+/// How much of a rise's (or fall's) height over its foot (`strip[foot]`: a rise's lowest
+/// cell, `rise`, or a fall's) is rough ground's, not the obstacle's, metres. The ground
+/// on the foot's side of it (the contiguous cells seen whole up to a `wheelbase` before a
+/// rise's foot, or after a fall's, the foot included: the ground the wheels stand on as
+/// they come to it, wider than rough ground's dips) is level ground when it spans at most
+/// rough ground's peak to peak (twice [`FOOT_DIP_MAX_M`]) over at least
+/// [`FOOT_LEVEL_MIN_CELLS`] cells and lies on one line within rough ground's spread
+/// ([`ROUGH_LINE_RMS_M`]). Then the wheels come to the rise from that line, not from the
+/// bottom of a dip at its foot: how far the foot's wheel height lies under the line (at
+/// most [`FOOT_DIP_MAX_M`]) does not count, nor does the line's own RMS spread up to
+/// [`UNSEEN_FOOT_MARGIN_M`] (the margin for rough ground's bumps that a rise whose foot
+/// is not seen gets: what stands within it of a wheel radius over the ground is within
+/// the bumps of a 9 cm pebble). An 8.7 cm stone whose foot lies in a 2 cm dip of lumpy
+/// ground stood 12.2 cm over the dip, a `slope` (`sweep -- natural 200 6824 random 6`
+/// #151); a 15 cm stone, or a step of a wheel radius and more over the ground's level,
+/// still stands over it. Other ground there (a ramp, a trench's floor and the ground
 /// beside it, a stone at the foot) is no level line and counts nothing: the rise is
-/// measured from its foot. So does a foot with too few cells before it (the strip's
-/// first cells: what is before them is not seen).
-fn rough_at_foot(strip: &[StripCell], foot: usize, rise: bool) -> f32 {
+/// measured from its foot. So does a foot with too few cells before it (the strip's first
+/// cells: what is before them is not seen).
+fn rough_at_foot(strip: &[StripCell], foot: usize, rise: bool, wheelbase: f32) -> f32 {
     let x = strip[foot].x;
     let (mut a, mut b) = (foot, foot);
     if rise {
-        while a > 0 && joined(strip, a - 1, 1) && x - strip[a - 1].x <= FOOT_LEVEL_M {
+        while a > 0 && joined(strip, a - 1, 1) && x - strip[a - 1].x <= wheelbase {
             a -= 1;
         }
     } else {
-        while b + 1 < strip.len() && joined(strip, b, 1) && strip[b + 1].x - x <= FOOT_LEVEL_M {
+        while b + 1 < strip.len() && joined(strip, b, 1) && strip[b + 1].x - x <= wheelbase {
             b += 1;
         }
     }
@@ -168,10 +168,6 @@ fn rough_at_foot(strip: &[StripCell], foot: usize, rise: bool) -> f32 {
         _ => 0.0,
     }
 }
-
-/// How far the ground before a rise's foot (after a fall's) reaches for
-/// [`rough_at_foot`], metres: wider than rough ground's dips (10-20 cm across).
-const FOOT_LEVEL_M: f32 = 0.3;
 
 /// Fewest cells of ground for [`rough_at_foot`]'s line.
 const FOOT_LEVEL_MIN_CELLS: usize = 4;
