@@ -778,6 +778,31 @@ fn a_boulder_whose_front_the_image_s_side_edge_cuts_is_never_go() {
     }
 }
 
+/// Asserts that the scene `field(height)` draws, seen by `c` clean and with noise
+/// seeded `noise_seed`, is go with its stone `low` metres high, and stops with it
+/// 15 cm high, with a hazard on `side` (of `kind`, when given).
+fn go_low_stop_tall(
+    field: impl Fn(f64) -> Vec<Element>,
+    low: f64,
+    c: &Config,
+    noise_seed: u64,
+    (side, kind): (Side, Option<HazardKind>),
+) {
+    for v in analyse_views(field(low), c, [None, Some(noise_seed)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?} {:?}", v.hazards, v.feature);
+    }
+    for v in analyse_views(field(0.15), c, [None, Some(noise_seed)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+        assert!(
+            v.hazards
+                .iter()
+                .any(|h| h.side == side && kind.is_none_or(|k| h.kind == k)),
+            "{:?}",
+            v.hazards
+        );
+    }
+}
+
 #[test]
 fn a_pebble_on_lumpy_ground_fitted_as_a_step_along_the_track_is_climbed() {
     // A D435-like camera 1.13 m high, rolled 9.9° and yawed 8.8°, over lumpy ground
@@ -791,13 +816,6 @@ fn a_pebble_on_lumpy_ground_fitted_as_a_step_along_the_track_is_climbed() {
         [416.451, 415.246, 405.222, 225.847],
         0.3823,
     );
-    let stone = |x_m, y_m, radius_m, height_m, shape| Element::Stone {
-        x_m,
-        y_m,
-        radius_m,
-        height_m,
-        shape,
-    };
     let field = |height_m: f64| {
         vec![
             Element::Lumpy {
@@ -805,25 +823,19 @@ fn a_pebble_on_lumpy_ground_fitted_as_a_step_along_the_track_is_climbed() {
                 spacing_m: 0.172_390_610,
                 seed: 8_125_628_376_058_999_391,
             },
-            stone(1.7217, 0.2748, 0.1042, 0.0567, StoneShape::Mound),
-            stone(1.3527, 0.5459, 0.0808, 0.0505, StoneShape::Cone),
-            stone(2.3994, -0.4855, 0.0975, 0.0597, StoneShape::Cone),
-            stone(1.2155, -0.3966, 0.1179, height_m, StoneShape::Mound),
+            Element::stone(1.7217, 0.2748, 0.1042, 0.0567, StoneShape::Mound),
+            Element::stone(1.3527, 0.5459, 0.0808, 0.0505, StoneShape::Cone),
+            Element::stone(2.3994, -0.4855, 0.0975, 0.0597, StoneShape::Cone),
+            Element::stone(1.2155, -0.3966, 0.1179, height_m, StoneShape::Mound),
         ]
     };
-    for v in analyse_views(field(0.0875), &c, [None, Some(6_824_124)]) {
-        assert_eq!(v.decision, Decision::Go, "{:?} {:?}", v.hazards, v.feature);
-    }
-    for v in analyse_views(field(0.15), &c, [None, Some(6_824_124)]) {
-        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
-        assert!(
-            v.hazards
-                .iter()
-                .any(|h| h.kind == HazardKind::Step && h.side == Side::Right),
-            "{:?}",
-            v.hazards
-        );
-    }
+    go_low_stop_tall(
+        field,
+        0.0875,
+        &c,
+        6_824_124,
+        (Side::Right, Some(HazardKind::Step)),
+    );
 }
 
 #[test]
@@ -835,13 +847,6 @@ fn a_stone_whose_foot_lies_in_a_dip_of_lumpy_ground_is_climbed() {
     // `slope`). The same stone 15 cm high stops.
     let mut c = kinect_v2(mounted([0.2944, 0.0315, 1.1691], [6.2241, 41.2933, 1.9687]));
     c.camera.min_range_m = 0.3332;
-    let stone = |x_m, y_m, radius_m, height_m, shape| Element::Stone {
-        x_m,
-        y_m,
-        radius_m,
-        height_m,
-        shape,
-    };
     let field = |height_m: f64| {
         vec![
             Element::Lumpy {
@@ -849,24 +854,14 @@ fn a_stone_whose_foot_lies_in_a_dip_of_lumpy_ground_is_climbed() {
                 spacing_m: 0.110_430_467,
                 seed: 11_292_676_210_325_382_132,
             },
-            stone(1.0420, -0.4041, 0.1330, 0.0865, StoneShape::Cap),
-            stone(1.2378, 0.4096, 0.1597, height_m, StoneShape::Boulder),
-            stone(2.5749, 0.3052, 0.1264, 0.0709, StoneShape::Boulder),
-            stone(1.9509, -0.4065, 0.0947, 0.0526, StoneShape::Cone),
-            stone(1.2706, -0.5700, 0.1285, 0.0722, StoneShape::Mound),
+            Element::stone(1.0420, -0.4041, 0.1330, 0.0865, StoneShape::Cap),
+            Element::stone(1.2378, 0.4096, 0.1597, height_m, StoneShape::Boulder),
+            Element::stone(2.5749, 0.3052, 0.1264, 0.0709, StoneShape::Boulder),
+            Element::stone(1.9509, -0.4065, 0.0947, 0.0526, StoneShape::Cone),
+            Element::stone(1.2706, -0.5700, 0.1285, 0.0722, StoneShape::Mound),
         ]
     };
-    for v in analyse_views(field(0.0874), &c, [None, Some(6_824_151)]) {
-        assert_eq!(v.decision, Decision::Go, "{:?} {:?}", v.hazards, v.feature);
-    }
-    for v in analyse_views(field(0.15), &c, [None, Some(6_824_151)]) {
-        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
-        assert!(
-            v.hazards.iter().any(|h| h.side == Side::Left),
-            "{:?}",
-            v.hazards
-        );
-    }
+    go_low_stop_tall(field, 0.0874, &c, 6_824_151, (Side::Left, None));
 }
 
 #[test]
@@ -880,13 +875,6 @@ fn a_stone_with_a_broad_dip_of_lumpy_ground_past_it_is_climbed_down() {
     let mut c = mounted([0.2248, 0.0351, 1.0024], [9.1610, 31.9609, 6.3007]);
     (c.camera.width, c.camera.height) = (320, 240);
     c.camera.min_range_m = 0.3655;
-    let stone = |x_m, y_m, radius_m, height_m, shape| Element::Stone {
-        x_m,
-        y_m,
-        radius_m,
-        height_m,
-        shape,
-    };
     let field = |height_m: f64| {
         vec![
             Element::Lumpy {
@@ -894,24 +882,14 @@ fn a_stone_with_a_broad_dip_of_lumpy_ground_past_it_is_climbed_down() {
                 spacing_m: 0.127_293_035,
                 seed: 12_951_764_189_611_123_638,
             },
-            stone(2.7682, -0.4385, 0.1260, 0.0651, StoneShape::Cap),
-            stone(2.2553, -0.6016, 0.1025, 0.0747, StoneShape::Mound),
-            stone(1.2041, -0.5053, 0.1171, height_m, StoneShape::Cap),
-            stone(1.2313, 0.3736, 0.1578, 0.0838, StoneShape::Cone),
-            stone(2.7799, 0.5242, 0.0767, 0.0426, StoneShape::Cap),
+            Element::stone(2.7682, -0.4385, 0.1260, 0.0651, StoneShape::Cap),
+            Element::stone(2.2553, -0.6016, 0.1025, 0.0747, StoneShape::Mound),
+            Element::stone(1.2041, -0.5053, 0.1171, height_m, StoneShape::Cap),
+            Element::stone(1.2313, 0.3736, 0.1578, 0.0838, StoneShape::Cone),
+            Element::stone(2.7799, 0.5242, 0.0767, 0.0426, StoneShape::Cap),
         ]
     };
-    for v in analyse_views(field(0.0863), &c, [None, Some(7_022_187)]) {
-        assert_eq!(v.decision, Decision::Go, "{:?} {:?}", v.hazards, v.feature);
-    }
-    for v in analyse_views(field(0.15), &c, [None, Some(7_022_187)]) {
-        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
-        assert!(
-            v.hazards.iter().any(|h| h.side == Side::Right),
-            "{:?}",
-            v.hazards
-        );
-    }
+    go_low_stop_tall(field, 0.0863, &c, 7_022_187, (Side::Right, None));
 }
 
 #[test]
@@ -966,13 +944,7 @@ fn a_stone_on_a_ramp_whose_foot_the_view_starts_on_is_judged_from_the_ramp() {
     let on_ramp = |height_m| {
         vec![
             Element::ramp(toe, 0.0, g, 0.0, Extent::Full),
-            Element::Stone {
-                x_m: 1.2422,
-                y_m: 0.4323,
-                radius_m: 0.0792,
-                height_m,
-                shape: StoneShape::Boulder,
-            },
+            Element::stone(1.2422, 0.4323, 0.0792, height_m, StoneShape::Boulder),
         ]
     };
     for v in analyse_views(on_ramp(0.0528), &c, [None, Some(5_707_043)]) {
@@ -2221,13 +2193,7 @@ fn a_rock_whose_front_the_view_ends_on_is_never_go() {
     let mut c = mounted([0.2933, -0.0337, 0.7277], [-8.238, 42.029, 5.646]);
     c.camera.min_range_m = 0.4656;
     let ramp = Element::ramp(1.4429, 0.0, 10.293, 0.0, Extent::Full);
-    let mound = Element::Stone {
-        x_m: 1.7778,
-        y_m: 0.4426,
-        radius_m: 0.1755,
-        height_m: 0.1922,
-        shape: StoneShape::Mound,
-    };
+    let mound = Element::stone(1.7778, 0.4426, 0.1755, 0.1922, StoneShape::Mound);
     assert_never_go(&[ramp.clone(), mound], &c, [5102, 10], Side::Left);
     assert_eq!(analyse(vec![ramp], &c).decision, Decision::Go);
 
@@ -2279,13 +2245,7 @@ fn a_rock_whose_front_the_view_ends_on_is_never_go() {
                 radius_m,
                 height_m,
             },
-            k => Element::Stone {
-                x_m,
-                y_m,
-                radius_m,
-                height_m,
-                shape: StoneShape::ALL[k - 1],
-            },
+            k => Element::stone(x_m, y_m, radius_m, height_m, StoneShape::ALL[k - 1]),
         };
         let scene = vec![ground.clone(), rock.clone()];
         let clean = rover_terrain::sim::render(&Terrain::new(scene.clone()), &c);

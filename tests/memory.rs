@@ -705,13 +705,13 @@ fn a_boulder_the_image_s_side_edge_cuts_off_near_the_rover_is_remembered() {
         config.mount.pitch_deg,
         config.mount.yaw_deg,
     ) = (-1.669, 40.443, -9.738);
-    let boulder = Terrain::new(vec![Element::Stone {
-        x_m: 0.979,
-        y_m: 0.506,
-        radius_m: 0.161,
-        height_m: 0.189,
-        shape: sim::StoneShape::Mound,
-    }]);
+    let boulder = Terrain::new(vec![Element::stone(
+        0.979,
+        0.506,
+        0.161,
+        0.189,
+        sim::StoneShape::Mound,
+    )]);
     let mut fused = Pipeline::new(config.clone()).unwrap();
     let step = Motion {
         forward_m: 0.1,

@@ -284,6 +284,18 @@ impl Element {
         }
     }
 
+    /// A [`Element::Stone`] of `shape`, `height_m` high and `radius_m` in radius, centred
+    /// at (`x_m`, `y_m`); metres.
+    pub fn stone(x_m: f64, y_m: f64, radius_m: f64, height_m: f64, shape: StoneShape) -> Element {
+        Element::Stone {
+            x_m,
+            y_m,
+            radius_m,
+            height_m,
+            shape,
+        }
+    }
+
     /// This ramp with a plateau `cap_m` metres above (or below) its toe; other
     /// elements are returned unchanged.
     pub fn capped(mut self, cap: Option<f64>) -> Element {
