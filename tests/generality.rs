@@ -893,6 +893,33 @@ fn a_stone_with_a_broad_dip_of_lumpy_ground_past_it_is_climbed_down() {
 }
 
 #[test]
+fn a_stone_whose_shadow_runs_to_the_corridor_s_end_is_no_steep_face() {
+    // A Kinect v1 0.92 m high, pitched 34°, over lumpy ground with stones. An 8.6 cm
+    // stone 2.65 m out in the right track hides the ground behind it to the corridor's
+    // end. The face analysis fitted its front, 11.2 cm over the ground before it, as a
+    // 25° face running on to where the view ends, ± 3.6° for so short a face on rough
+    // ground: over the slope limit with its margin, a `slope` (`sweep -- natural 200
+    // 7022 random 6` #80, clean and noisy). Its view ends in its own shadow, not at
+    // the horizon: a low step. The same stone 15 cm high stops.
+    let mut c = mounted([0.2994, 0.0126, 0.9180], [-0.6768, 34.1772, -1.8038]);
+    c.camera.min_range_m = 0.3999;
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.165_305_882,
+                seed: 186_878_076_530_193_326,
+            },
+            Element::stone(1.0370, -0.5055, 0.0738, 0.0445, StoneShape::Mound),
+            Element::stone(2.0097, 0.6005, 0.0825, 0.0522, StoneShape::Cone),
+            Element::stone(1.4747, 0.4044, 0.0925, 0.0736, StoneShape::Cone),
+            Element::stone(2.6538, -0.3235, 0.1591, height_m, StoneShape::Cap),
+        ]
+    };
+    go_low_stop_tall(field, 0.0860, &c, 7_022_080, (Side::Right, None));
+}
+
+#[test]
 fn a_stone_on_a_climbable_ramp_is_climbed_and_the_ramp_measured() {
     // A Kinect v2 0.5 m high, pitched 38° and yawed −8.8°, sees a 17.2° ramp whose
     // toe is 1.44 m out, a 5.9 cm rock 0.24 m up it in the left track. From the toe to
