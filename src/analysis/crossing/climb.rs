@@ -64,25 +64,28 @@ pub(super) fn strip_hazards(
 ) {
     // No pair differs by more than `r` from a cell within `r` of the strip's highest
     // and lowest wheels: such a cell is skipped without looking at its pairs.
-    let (low, high) = strip
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), c| {
-            (lo.min(c.wheel), hi.max(c.wheel))
-        });
+    let (low, high) = wheel_span(strip);
     let all_finite = strip.iter().all(|c| c.wheel.is_finite());
     for (i, a) in strip.iter().enumerate() {
         let (xi, zi) = (a.x, a.wheel);
         if all_finite && high - zi <= r && zi - low <= r {
             continue;
         }
+        // How much of a rise from this cell is rough ground's: the same for every
+        // cell ahead, so measured once, when a rise first needs it.
+        let mut rough_rise = None;
         for (j, b) in strip.iter().enumerate().skip(i + 1) {
             let (xj, zj) = (b.x, b.wheel);
             let (dx, dz) = (xj - xi, zj - zi);
             if dz.abs() <= r {
                 continue;
             }
-            let foot = if dz > 0.0 { i } else { j };
-            if dz.abs() - rough_at_foot(strip, foot, dz > 0.0, wheelbase) <= r {
+            let rough = if dz > 0.0 {
+                *rough_rise.get_or_insert_with(|| rough_at_foot(strip, i, true, wheelbase))
+            } else {
+                rough_at_foot(strip, j, false, wheelbase)
+            };
+            if dz.abs() - rough <= r {
                 continue; // a wheel radius or less over the ground the wheel comes from
             }
             if holey(&strip[i..=j], min_gap) {
@@ -143,20 +146,12 @@ pub(super) fn strip_hazards(
 /// cells: what is before them is not seen).
 fn rough_at_foot(strip: &[StripCell], foot: usize, rise: bool, wheelbase: f32) -> f32 {
     let x = strip[foot].x;
-    let (mut a, mut b) = (foot, foot);
-    if rise {
-        while a > 0 && joined(strip, a - 1, 1) && x - strip[a - 1].x <= wheelbase {
-            a -= 1;
-        }
+    let ground = if rise {
+        &strip[reach_back(strip, foot, 1, (x, wheelbase))..=foot]
     } else {
-        while b + 1 < strip.len() && joined(strip, b, 1) && strip[b + 1].x - x <= wheelbase {
-            b += 1;
-        }
-    }
-    let ground = &strip[a..=b];
-    let (low, high) = ground.iter().fold((f32::MAX, f32::MIN), |(lo, hi), c| {
-        (lo.min(c.wheel), hi.max(c.wheel))
-    });
+        &strip[foot..=reach_on(strip, foot, 1, (x, wheelbase))]
+    };
+    let (low, high) = wheel_span(ground);
     if ground.len() < FOOT_LEVEL_MIN_CELLS || high - low > 2.0 * FOOT_DIP_MAX_M {
         return 0.0;
     }
@@ -167,6 +162,15 @@ fn rough_at_foot(strip: &[StripCell], foot: usize, rise: bool, wheelbase: f32) -
         }
         _ => 0.0,
     }
+}
+
+/// The lowest and highest wheel heights of `cells`, metres (infinite when empty).
+fn wheel_span(cells: &[StripCell]) -> (f32, f32) {
+    cells
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), c| {
+            (lo.min(c.wheel), hi.max(c.wheel))
+        })
 }
 
 /// Fewest cells of ground for [`rough_at_foot`]'s line.
@@ -238,19 +242,13 @@ fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Op
     if strip[i].past {
         return None;
     }
-    let mut end = if strip[j].past { j - 1 } else { j };
-    while end + 1 < strip.len() && joined(strip, end, 1) {
-        end += 1;
-    }
+    let seen_end = if strip[j].past { j - 1 } else { j };
+    let end = reach_on(strip, seen_end, 1, (strip[seen_end].x, f32::INFINITY));
     let view_ends = end + 1 == strip.len() || strip[end + 1].past;
     if !view_ends || end < i || strip[end].x - strip[i].x >= 0.9 * wheelbase {
         return None;
     }
-    let mut start = i;
-    while start > 0 && joined(strip, start - 1, 1) && strip[end].x - strip[start - 1].x <= wheelbase
-    {
-        start -= 1;
-    }
+    let start = reach_back(strip, i, 1, (strip[end].x, wheelbase));
     let window = &strip[start..=end];
     // Two cells at least on the line before the hinge, so that it is a line.
     (start + 2..=i)
@@ -297,6 +295,26 @@ fn joined(strip: &[StripCell], k: usize, step: usize) -> bool {
     strip[k + 1].ix <= strip[k].ix + step && !strip[k].past && !strip[k + 1].past
 }
 
+/// The first cell of the run joined to `strip[k]` ([`joined`], rows at most `step`
+/// apart) back from it whose cells lie at most `len` metres before `x`.
+fn reach_back(strip: &[StripCell], k: usize, step: usize, (x, len): (f32, f32)) -> usize {
+    let mut a = k;
+    while a > 0 && joined(strip, a - 1, step) && x - strip[a - 1].x <= len {
+        a -= 1;
+    }
+    a
+}
+
+/// The last cell of the run joined to `strip[k]` ([`joined`], rows at most `step`
+/// apart) on from it whose cells lie at most `len` metres past `x`.
+fn reach_on(strip: &[StripCell], k: usize, step: usize, (x, len): (f32, f32)) -> usize {
+    let mut b = k;
+    while b + 1 < strip.len() && joined(strip, b, step) && strip[b + 1].x - x <= len {
+        b += 1;
+    }
+    b
+}
+
 /// Least length of a ramp's line for [`view_end_slope`], metres: over 0.4 m, ±2.5 cm
 /// ground moves a line's slope by about 2° (one σ); over 0.25 m by 5°.
 const VIEW_END_RAMP_M: f32 = 0.4;
@@ -339,26 +357,14 @@ fn windows(
     wheelbase: f32,
     step: usize,
 ) -> impl Iterator<Item = &[StripCell]> + '_ {
-    let mut end = j;
-    while end + 1 < strip.len()
-        && joined(strip, end, step)
-        && strip[end + 1].x - strip[i].x <= wheelbase
-    {
-        end += 1;
-    }
+    let end = reach_on(strip, j, step, (strip[i].x, wheelbase));
     // A run may end on a cell past the horizon (its height only a bound): the window
     // behind it ends on the last cell seen whole. When that is the run's start, the
     // window holds none of the run's rise (flat ground before a post whose front the
     // view ends on read as a gentle line, and the post as a rough ramp's bump: a go):
     // there is no window behind.
     let last = if strip[j].past && j > i { j - 1 } else { j };
-    let mut start = i;
-    while start > 0
-        && joined(strip, start - 1, step)
-        && strip[last].x - strip[start - 1].x <= wheelbase
-    {
-        start -= 1;
-    }
+    let start = reach_back(strip, i, step, (strip[last].x, wheelbase));
     let behind = (last > i || !strip[j].past).then(|| &strip[start..=last]);
     [Some(&strip[i..=end]), behind]
         .into_iter()
