@@ -920,6 +920,41 @@ fn a_stone_whose_shadow_runs_to_the_corridor_s_end_is_no_steep_face() {
 }
 
 #[test]
+fn a_ramp_s_top_beside_its_vertical_side_is_not_taken_for_a_slope_across_the_strip() {
+    // A 320×240 camera 0.78 m high, rolled 5.7°, pitched 25.5° and yawed −8.2°, sees a
+    // ramp under each track: 17.2° from 1.20 m on the left, 18.2° from 1.56 m on the
+    // right (`sweep -- natural 100 7102 random` #9, clean). In the right track's inner
+    // strip, cells 2.7 m out hold the ramp's top and a few points of its vertical side
+    // on their edge, which pull the points' mean 0.15 of a voxel sideways. Read as one
+    // surface sloping across the strip, the strip took their mean, 4-7 cm under the
+    // ramp, then climbed back to the ramp: an 11 cm `step` at 2.80 m.
+    let mut c = mounted(
+        [0.291_857_077, -0.015_888_127, 0.783_633_429],
+        [5.746_111_348, 25.543_278_446, -8.220_322_721],
+    );
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.368_847_753;
+    let (toe, g) = (1.198_434_763, 17.164_071_662);
+    let ramps = |right_deg: f64| {
+        vec![
+            Element::ramp(toe, 0.45, g, 0.0, LEFT_TRACK),
+            Element::ramp(1.563_375_609, -0.45, right_deg, 0.0, RIGHT_TRACK),
+        ]
+    };
+    assert_go(&analyse(ramps(18.236_917_017), &c), 3, toe, g, None);
+    assert_noisy_go(
+        &analyse_noisy(ramps(18.236_917_017), &c, 7_102_009),
+        3,
+        toe,
+        g,
+    );
+    // The right ramp too steep: never go.
+    for v in analyse_views(ramps(34.0), &c, [None, Some(7_102_009)]) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
+#[test]
 fn a_stone_on_a_climbable_ramp_is_climbed_and_the_ramp_measured() {
     // A Kinect v2 0.5 m high, pitched 38° and yawed −8.8°, sees a 17.2° ramp whose
     // toe is 1.44 m out, a 5.9 cm rock 0.24 m up it in the left track. From the toe to

@@ -154,7 +154,11 @@ fn hugs_one_side(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> bool {
 /// pulls it toward that surface); its upper and lower bands centre on opposite sides
 /// of the points' mean, apart more sideways than forward (a face across the strip
 /// parts them forward) by at least [`SIDE_MIN_VOXELS`]; or, when only one band holds
-/// a surface, its top voxel lies to one side by half [`FACE_OFF_VOXELS`]. The cell's
+/// a surface, its top voxel lies to one side, by half [`FACE_OFF_VOXELS`] off both the
+/// points' mean and the strip's centre line (a surface sloping across has its highest
+/// points on its high side; a ramp's top spread across the cell has its top voxel on
+/// the centre line, however far a side face's points on the cell's edge pull the mean:
+/// `sweep -- natural 100 7102 random` #9). The cell's
 /// mean height is then the ground's on the strip's centre line (exact for a plane).
 pub(super) fn slopes_across(cell: &Cell, y_mid: f32, vs: f32) -> bool {
     let span = cell.top - cell.low;
@@ -165,7 +169,8 @@ pub(super) fn slopes_across(cell: &Cell, y_mid: f32, vs: f32) -> bool {
         return false;
     }
     if cell.crest == cell.foot {
-        return (cell.top_xy[1] - cell.y).abs() >= 0.5 * FACE_OFF_VOXELS * vs;
+        let off = |y: f32| (cell.top_xy[1] - y).abs() >= 0.5 * FACE_OFF_VOXELS * vs;
+        return off(cell.y) && off(y_mid);
     }
     let (dx, dy) = (
         cell.crest_xy[0] - cell.foot_xy[0],
@@ -239,6 +244,34 @@ mod tests {
         let mut face = one;
         (face.z, face.low) = (0.325, 0.03);
         assert!(!slopes_across(&face, MID, VS));
+        // One band whose top voxel lies on the strip's centre line: a ramp's top
+        // spread across the cell, the mean pulled 0.14 of a voxel to its side by a
+        // vertical side face's points on the cell's edge (`sweep -- natural 100 7102
+        // random` #9, the right track's inner strip, y from −0.25 to −0.2, 2.675 m
+        // out; to the millimetre). The top voxel lies 0.16 of a voxel off the mean
+        // only because the mean moved: read as a slope across, the strip took the
+        // mean, 4 cm under the ramp, and then climbed back to it: a `step`.
+        let edge = Cell {
+            n: 30,
+            x: 2.675,
+            y: -0.218,
+            z: 0.321,
+            top: 0.366,
+            top_xy: [2.675, -0.226],
+            low: 0.275,
+            crest: 0.362,
+            foot: 0.362,
+            crest_xy: [2.676, -0.223],
+            foot_xy: [2.676, -0.223],
+        };
+        assert!(!slopes_across(&edge, -0.225, VS));
+        // Its top voxel on one side, off the centre line too: a slope across.
+        let sloped = Cell {
+            top_xy: [2.675, -0.235],
+            ..edge
+        };
+        assert!(slopes_across(&sloped, -0.225, VS));
+        assert!(!slopes_across(&edge, -0.225, VS));
         // The points' mean off the middle: a face hugging the cell's side.
         let mut hug = c;
         hug.y = MID + 0.01;
