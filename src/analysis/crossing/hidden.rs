@@ -270,8 +270,12 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// measures a face it cannot call climbable. Two or more inner strips of a track or
 /// of the belly band showing it (10 cm) give an `unknown` hazard at the nearest foot,
 /// unless the other tests already found a hazard on that side or one nearer than the
-/// foot (the rover stops already, and the verdict says why). Runs last of the crossing
-/// tests.
+/// foot (the rover stops already, and the verdict says why); so does one strip whose
+/// steep climb rises more than a wheel radius and [`UNSEEN_FOOT_MARGIN_M`] (the margin
+/// of every rise whose top is not seen): what it saw is already an obstacle's front
+/// (a 15.5 cm mound the image's top edge cut in two strips, seen rising 12 cm at 31°
+/// and 29° from its foot, was a go: `sweep -- natural 200 6822 random 7` #34). Runs
+/// last of the crossing tests.
 ///
 /// A climb of under [`STEEP_EXIT_RISE_M`] into the cut cells can be a bump of rough
 /// ground in one strip, but not across the band: bumps 10-20 cm long lift two or
@@ -292,12 +296,13 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
 /// out of view in them.
 pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
-    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
-    let wheelbase = f.cfg.rover.wheelbase_m as f32;
+    let rover = &f.cfg.rover;
+    let tan_max = (rover.max_slope_deg as f32).to_radians().tan();
+    let (wheelbase, r) = (rover.wheelbase_m as f32, rover.wheel_radius_m as f32);
     let s = f.spec;
     let found = [Region::Left, Region::Belly, Region::Right].map(|region| {
-        let (mut tall, mut short, mut nearest) = (0usize, 0usize, f32::INFINITY);
-        let (mut short_nearest, mut inner) = (f32::INFINITY, 0usize);
+        let (mut tall, mut over, mut nearest) = (0usize, 0usize, f32::INFINITY);
+        let (mut short, mut short_nearest, mut inner) = (0usize, f32::INFINITY, 0usize);
         let (mut any_tall, mut any_nearest) = (0usize, f32::INFINITY);
         let (mut bent, mut bent_nearest) = (0usize, f32::INFINITY);
         for iy in inner_strips(f, region) {
@@ -381,11 +386,12 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 any_nearest = any_nearest.min(foot.0);
                 if steep {
                     tall += 1;
+                    over += usize::from(rise > r + UNSEEN_FOOT_MARGIN_M);
                     nearest = nearest.min(foot.0);
                 }
             }
         }
-        let (steep, nearest) = if tall >= 2 {
+        let (steep, nearest) = if tall >= 2 || over >= 1 {
             (true, nearest)
         } else if any_tall >= SPREAD_TALL_STRIPS {
             (true, any_nearest)
