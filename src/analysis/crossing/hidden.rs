@@ -21,9 +21,7 @@ use crate::verdict::{Hazard, HazardKind, Verdict};
 /// that continues beside it. So when a third or more of what the other strips of the track
 /// within [`HIDDEN_TOP_REACH_M`] see past the exit, within [`HIDDEN_TOP_REACH_M`] of
 /// it, lies more than a wheel radius and a margin for rough ground's bumps
-/// ([`UNSEEN_FOOT_MARGIN_M`], and [`LOWER_THIRD_M`]: the count compares the top with
-/// the lower third of that ground, not its level) below the height the climb last
-/// reached (its exit, or
+/// ([`UNSEEN_FOOT_MARGIN_M`]) below the height the climb last reached (its exit, or
 /// the mean of a cell the image's top edge cuts just past it: a lower bound), the
 /// climb is an obstacle higher than a wheel radius with its far side hidden: a step
 /// at its foot (the last cell of the climb at most half a wheel radius above its
@@ -82,8 +80,7 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     for jx in ix + 1..(ix + 1 + reach).min(f.spec.nx) {
                         if let Some(z) = ground(jx, jy) {
                             all += 1;
-                            let margin = UNSEEN_FOOT_MARGIN_M + LOWER_THIRD_M;
-                            below += usize::from(z < top - r - margin);
+                            below += usize::from(z < top - r - UNSEEN_FOOT_MARGIN_M);
                         }
                     }
                 }
@@ -537,14 +534,6 @@ const HIDDEN_TOP_REACH_M: f32 = 0.25;
 /// Fewest cells of ground beside a hidden top, more than a wheel radius below it, for
 /// [`hidden_tops`] to take it for an obstacle.
 const HIDDEN_TOP_MIN_CELLS: usize = 3;
-/// How far rough ground's lower third lies under its level, metres: 0.43 of its
-/// spread (σ ≈ 1.25 cm for ±2.5 cm ground). [`hidden_tops`] counts the cells beside a
-/// hidden top that lie a wheel radius and [`UNSEEN_FOOT_MARGIN_M`] under it, and a
-/// third of them is enough: without this, an 8.7 cm rock on a bump stood 11.6 cm over
-/// the mean of the ground beside it, but 7 of the 18 cells there, in a dip, lay over
-/// 12 cm under its top (`sweep -- families 200 7221 random 6` #90, a `step`; #164 the
-/// same, 11.5 cm).
-const LOWER_THIRD_M: f32 = 0.005;
 /// Fewest strips of a track whose ground past a climb's shadow lies too low for
 /// [`hidden_tops`] to take the climb for an obstacle: one strip may be a pebble's
 /// narrow top seen beside a dip.
