@@ -920,6 +920,45 @@ fn a_stone_whose_shadow_runs_to_the_corridor_s_end_is_no_steep_face() {
 }
 
 #[test]
+fn a_sharp_cone_in_a_dip_whose_far_side_is_hidden_stops() {
+    // A Kinect v1 1.06 m high, pitched 34° and yawed 9.8°, over lumpy ground with
+    // stones (`sweep -- natural 200 7322 random 7` #139). A 15.5 cm cone 2.18 m out in
+    // the right track stands in a dip; its 5 cm cells read its sharp apex centimetres
+    // low, and its far side is hidden. The hidden-top test finds it by the third of
+    // the cells beside it that lie over a wheel radius and 1 cm under its top: counting
+    // them from half a centimetre lower (rough ground's lower third under its level)
+    // made it a go, clean and noisy. The same cone 9 cm high is go. (15 cm high it is
+    // a go too: the sharp-stone class the README lists under what still fails.)
+    let mut c = mounted([0.0434, 0.0631, 1.0618], [-2.8174, 34.2274, 9.8289]);
+    c.camera.min_range_m = 0.4257;
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.155_371_564,
+                seed: 7_784_971_108_706_534_428,
+            },
+            Element::stone(2.0228, 0.5336, 0.1189, 0.0826, StoneShape::Cone),
+            Element::stone(1.0141, -0.4103, 0.0652, 0.0489, StoneShape::Boulder),
+            Element::stone(1.9525, -0.4252, 0.1155, 0.0752, StoneShape::Cap),
+            Element::stone(1.1142, 0.4749, 0.0987, 0.0511, StoneShape::Mound),
+            Element::stone(2.1819, -0.3643, 0.1562, height_m, StoneShape::Cone),
+        ]
+    };
+    for v in analyse_views(field(0.1553), &c, [None, Some(7_322_139)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Right),
+            "{:?}",
+            v.hazards
+        );
+    }
+    for v in analyse_views(field(0.09), &c, [None, Some(7_322_139)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    }
+}
+
+#[test]
 fn a_tall_mound_whose_top_the_image_s_top_edge_cuts_is_never_go() {
     // A Kinect v1 0.98 m high, rolled 6.5° and pitched 43.7°, over lumpy ground with
     // stones (`sweep -- natural 200 6822 random 7` #34, clean and noisy). The image's
