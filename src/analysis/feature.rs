@@ -609,7 +609,7 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) 
     if face.is_some_and(|face| {
         (!face.to_view_end && too_steep(gradient, 0.0))
             || (face.in_shadow && too_steep(gradient, sd))
-    }) && relief() <= f.cfg.rover.wheel_radius_m as f32 + super::crossing::UNSEEN_FOOT_MARGIN_M
+    }) && super::low_step(relief(), &f.cfg.rover)
     {
         (at_ref, gradient, alpha, nearest) = measures(f, onset, None, affected);
         sd = 0.0;

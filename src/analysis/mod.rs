@@ -501,11 +501,20 @@ fn too_high_step(
     let (Some(relief), Some(distance_m)) = (step_relief, measured.distance_m) else {
         return false;
     };
-    if relief <= rover.wheel_radius_m as f32 + crossing::UNSEEN_FOOT_MARGIN_M {
+    if low_step(relief, rover) {
         return false;
     }
     on_toe_line(measured, distance_m, HazardKind::Step, rover, verdict);
     true
+}
+
+/// Whether a step whose ground past its onsets stands `relief` metres off the ground
+/// before them is a low step a wheel climbs: within a wheel radius and the margin for
+/// rough ground's bumps ([`crossing::UNSEEN_FOOT_MARGIN_M`]). The face analysis
+/// measures such a face as a step ([`feature::analyse`]), and [`too_high_step`] lets
+/// it go.
+pub(crate) fn low_step(relief: f32, rover: &RoverConfig) -> bool {
+    relief <= rover.wheel_radius_m as f32 + crossing::UNSEEN_FOOT_MARGIN_M
 }
 
 /// A hazard of `kind` on each side a measured face's workcase names, where its toe
