@@ -1,7 +1,7 @@
 //! Debug aid: print the ground-cell grid of one rendered scene (a JSON terrain element,
 //! or an array of them, on the command line), seen cells as heights in cm (`^` where the image's top edge
 //! cuts the cell), unseen expected cells as `?`. With `STRIP=IY` in the environment,
-//! also every cell of strip IY: mean, top, low, crest and foot heights, cut or not.
+//! also every cell of strip IY: mean, top, peak, low, crest and foot heights, cut or not.
 //! With `CONFIG=FILE` (a TOML configuration, as `sweep`'s `DUMP` writes one for a
 //! random rig), that mount and camera instead of the default. A second argument, a
 //! seed, adds Kinect noise; `FLYING=FRACTION` then mixes edge pixels too (as `sweep`).
@@ -77,13 +77,14 @@ fn main() {
             let c = spec.cell(ix, iy);
             let cell = p.grid().cells()[c];
             println!(
-                "ix {ix} x {:.3} y {:.3} n {} z {:.3} top {:.3} low {:.3} crest {:.3} foot {:.3} \
+                "ix {ix} x {:.3} y {:.3} n {} z {:.3} top {:.3} peak {:.3} low {:.3} crest {:.3} foot {:.3} \
                  crest at ({:.3}, {:.3}) foot at ({:.3}, {:.3}) top at ({:.3}, {:.3}) cut {}",
                 cell.x,
                 cell.y,
                 cell.n,
                 cell.z,
                 cell.top,
+                cell.peak,
                 cell.low,
                 cell.crest,
                 cell.foot,

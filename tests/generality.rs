@@ -812,13 +812,15 @@ fn go_low_not_tall(
 }
 
 #[test]
-fn a_pebble_on_lumpy_ground_fitted_as_a_step_along_the_track_is_climbed() {
+fn a_mound_on_a_bump_stops_once_its_apex_stands_over_a_wheel_radius_above_the_ground_before_it() {
     // A D435-like camera 1.13 m high, rolled 9.9° and yawed 8.8°, over lumpy ground
-    // with stones. The face analysis fits an 8.7 cm mound in the right track as a
-    // step whose toe line runs 82° to the axle; its top stands 11.3 cm over the dip
-    // before it, over a wheel radius but within rough ground's bumps of a 9 cm
-    // pebble, which the rover climbs (`sweep -- natural 200 6824 random 6` #124, clean
-    // and noisy, stopped). The same mound 15 cm high stops.
+    // with stones (`sweep -- natural 200 6824 random 6` #124). An 8.7 cm Gaussian
+    // mound in the right track sits on a 2 cm bump: its apex stands 11.4-11.9 cm over
+    // the flat ground before it, more than a wheel radius. Its cells' means read it
+    // 10.3 cm up, and the face analysis, fitting it as a step along the track, 11.3 cm
+    // (within a wheel radius and rough ground's 1 cm: a go). The sharp-top test reads
+    // its highest point and stops it, as it stops a 16.5 cm cone in a dip standing as
+    // high (`a_sharp_cone_whose_cells_read_its_apex_low_stops`). 8 cm high, it is go.
     let c = d435_like(
         mounted([0.0070, -0.0253, 1.1290], [9.9158, 19.5811, 8.7588]),
         [416.451, 415.246, 405.222, 225.847],
@@ -837,13 +839,8 @@ fn a_pebble_on_lumpy_ground_fitted_as_a_step_along_the_track_is_climbed() {
             Element::stone(1.2155, -0.3966, 0.1179, height_m, StoneShape::Mound),
         ]
     };
-    go_low_stop_tall(
-        field,
-        0.0875,
-        &c,
-        6_824_124,
-        (Side::Right, Some(HazardKind::Step)),
-    );
+    let stop = (Decision::Stop, Side::Right, Some(HazardKind::Step));
+    go_low_not_tall(field, [0.08, 0.0875], &c, 6_824_124, stop);
 }
 
 #[test]
@@ -955,6 +952,35 @@ fn a_sharp_cone_in_a_dip_whose_far_side_is_hidden_stops() {
     };
     let stop = (Decision::Stop, Side::Right, None);
     go_low_not_tall(field, [0.09, 0.1553], &c, 7_322_139, stop);
+}
+
+#[test]
+fn a_sharp_cone_whose_cells_read_its_apex_low_stops() {
+    // A 320×240 camera 0.67 m high, pitched 25.9°, over lumpy ground with stones
+    // (`sweep -- natural 200 6822 random 7` #52, clean and noisy). A 16.5 cm cone with
+    // 47° flanks 1.02 m out in the left track, seen whole: its apex cell's upper
+    // surface reads 11.7 cm, 10.3 cm over the ground before it, a go. The highest
+    // point of that cell's top voxel is 14.2 cm, 11.1-11.6 cm over the ground's
+    // highest points before it: more than a wheel radius, a `step`. The same cone
+    // 9 cm high is go.
+    let mut c = mounted([0.1763, -0.0602, 0.6677], [3.7100, 25.8762, 1.3697]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.4689;
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.197_191_933,
+                seed: 15_116_880_644_064_618_536,
+            },
+            Element::stone(2.1477, 0.5786, 0.1136, 0.0798, StoneShape::Boulder),
+            Element::stone(1.8305, 0.4421, 0.0859, 0.0690, StoneShape::Cone),
+            Element::stone(2.4540, 0.4064, 0.1013, 0.0531, StoneShape::Mound),
+            Element::stone(1.0212, 0.3945, 0.1558, height_m, StoneShape::Cone),
+        ]
+    };
+    let stop = (Decision::Stop, Side::Left, Some(HazardKind::Step));
+    go_low_not_tall(field, [0.09, 0.1646], &c, 6_822_052, stop);
 }
 
 #[test]

@@ -55,6 +55,9 @@ pub(crate) struct StripCell {
     pub ix: usize,
     /// Whether the cell is at or past the sensor's horizon ([`Frame::past`]).
     pub past: bool,
+    /// The highest point of the cell's surface the strip reads, metres
+    /// ([`crate::grid::Cell::peak`] where that is its upper surface; `z` otherwise).
+    pub peak: f32,
     /// Where a wheel resting on the cell has its lowest point, metres: `z`, or
     /// higher where a neighbour within a wheel radius holds the wheel up (see
     /// `crossing::wheel_heights`).
@@ -484,7 +487,8 @@ fn too_steep_face(
 /// each side its workcase names goes into `verdict`, where the toe line is nearest
 /// within that side's wheel track, metres. Without the margin, an 8.7 cm mound on
 /// lumpy ground, 11.3 cm over the dip before it, fitted with a face along the track
-/// stopped the rover (`sweep -- natural 200 6824 random 6` #124).
+/// stopped the rover (`sweep -- natural 200 6824 random 6` #124; the step test's sharp
+/// tops stop it since: its apex stands 11.4-11.9 cm over that ground).
 ///
 /// The step test judges a strip's rise from the cells it sees; where the foot of what
 /// a strip climbs lies in a shadow (a 15 cm rock just behind an 8 cm one, the dip
@@ -610,6 +614,7 @@ mod tests {
                         y,
                         z: 0.0,
                         top: 0.0,
+                        peak: 0.0,
                         top_xy: [x, y],
                         low: 0.0,
                         crest: 0.0,
@@ -693,5 +698,15 @@ mod tests {
             assert!((v.seen_fraction - want).abs() < 1e-5, "{k}: {v:?}");
             assert_eq!(v.decision, Decision::Go);
         }
+    }
+
+    #[test]
+    fn a_low_step_rises_up_to_a_wheel_radius_and_rough_ground_s_centimetre() {
+        let rover = RoverConfig::default();
+        let r = rover.wheel_radius_m as f32;
+        let m = crossing::UNSEEN_FOOT_MARGIN_M;
+        assert!(low_step(r, &rover));
+        assert!(low_step(r + m - 0.001, &rover));
+        assert!(!low_step(r + m + 0.001, &rover));
     }
 }

@@ -54,30 +54,42 @@ fn on_rim(z: f32, dx: f32, r: f32) -> Option<f32> {
 }
 
 /// Steps and slopes along one strip's seen cells (see
-/// [`steps_and_slopes`](super::steps_and_slopes)).
+/// [`steps_and_slopes`](super::steps_and_slopes)); with `rises_only`, only steps that
+/// rise to a sharp top (the test of sharp tops: each cell's `z` is then its highest
+/// point where that is a sharp top, and `peak` the height the first pass read).
+/// Returns whether it found any.
 pub(super) fn strip_hazards(
     strip: &[StripCell],
     region: Region,
     (r, tan_max, wheelbase, min_gap): (f32, f32, f32, usize),
-    vs: f32,
+    (vs, rises_only): (f32, bool),
     verdict: &mut Verdict,
-) {
+) -> bool {
+    let mut found = false;
     // No pair differs by more than `r` from a cell within `r` of the strip's highest
     // and lowest wheels: such a cell is skipped without looking at its pairs.
     let (low, high) = wheel_span(strip);
     let all_finite = strip.iter().all(|c| c.wheel.is_finite());
+    // Rises only: steps, which rise within 3.5 voxels, to a sharp top (a cell whose
+    // `z` and `peak` differ) or a cell whose wheel it holds up.
+    let reach = if rises_only { 3.5 * vs } else { f32::INFINITY };
     for (i, a) in strip.iter().enumerate() {
         let (xi, zi) = (a.x, a.wheel);
         if all_finite && high - zi <= r && zi - low <= r {
             continue;
         }
+        let mut near = strip[i + 1..].iter().take_while(|c| c.x - xi <= reach + r);
+        if rises_only && !near.any(|c| c.z != c.peak) {
+            continue;
+        }
         // How much of a rise from this cell is rough ground's: the same for every
         // cell ahead, so measured once, when a rise first needs it.
         let mut rough_rise = None;
-        for (j, b) in strip.iter().enumerate().skip(i + 1) {
+        let ahead = strip.iter().enumerate().skip(i + 1);
+        for (j, b) in ahead.take_while(|(_, b)| b.x - xi <= reach) {
             let (xj, zj) = (b.x, b.wheel);
             let (dx, dz) = (xj - xi, zj - zi);
-            if dz.abs() <= r {
+            if dz.abs() <= r || (rises_only && dz < 0.0) {
                 continue;
             }
             let rough = if dz > 0.0 {
@@ -106,23 +118,27 @@ pub(super) fn strip_hazards(
                         Some(_) => Some((HazardKind::Slope, xi)),
                         None => Some((HazardKind::Step, 0.5 * (xi + xj))),
                     }
-                } else if sustained(&strip[i..=j])
+                } else if !rises_only
+                    && sustained(&strip[i..=j])
                     && climb_slope(strip, i, j, (wheelbase, r, min_gap)) >= tan_max
                 {
                     Some((HazardKind::Slope, xi))
                 } else {
                     None // flat, then a jump: a step, found from nearer cells
                 };
+                let kind = kind.filter(|(k, _)| !rises_only || *k == HazardKind::Step);
                 let Some((kind, at)) = kind else { break };
                 verdict.add_hazard(Hazard {
                     kind,
                     side: region.side(),
                     distance_m: at.max(0.0),
                 });
+                found = true;
             }
             break;
         }
     }
+    found
 }
 
 /// How much of a rise's (or fall's) height over its foot (`strip[foot]`: a rise's lowest
@@ -457,6 +473,7 @@ mod tests {
                 z,
                 ix: 20 + i,
                 past: false,
+                peak: z,
                 wheel: z,
             })
             .collect()
@@ -472,7 +489,7 @@ mod tests {
             &run,
             Region::Left,
             (0.11, 30f32.to_radians().tan(), 0.6, 2),
-            VS,
+            (VS, false),
             &mut v,
         );
         v.hazards.to_vec()
@@ -496,13 +513,14 @@ mod tests {
                 z,
                 ix: 20 + i,
                 past: false,
+                peak: z,
                 wheel: z,
             })
             .collect();
         wheel_heights(&mut run, 0.11);
         let mut v = Verdict::default();
         let limits = (0.11, 30f32.to_radians().tan(), 0.6, 2);
-        strip_hazards(&run, Region::Right, limits, VS, &mut v);
+        strip_hazards(&run, Region::Right, limits, (VS, false), &mut v);
         v.hazards.to_vec()
     }
 
