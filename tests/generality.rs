@@ -984,6 +984,37 @@ fn a_sharp_cone_whose_cells_read_its_apex_low_stops() {
 }
 
 #[test]
+fn a_rounded_rock_whose_highest_point_only_adds_noise_is_climbed() {
+    // A Kinect v2 0.96 m high, rolled −6.9° and pitched 37.8°, over rough ground with
+    // rocks (`sweep -- families 100 7001 random` #6, clean and noisy). An 8.8 cm rock
+    // 1.24 m out in the right track reads 10.9 cm up, its highest point 11.3 cm: a
+    // rounded top, which its surface's mean reads within rough ground's spread. Taken
+    // for a sharp top at its highest point, it stood over a wheel radius above the
+    // ground before it and stopped the rover. 15 cm high it stops.
+    let mut c = kinect_v2(mounted(
+        [0.2027, 0.0712, 0.9575],
+        [-6.9428, 37.7867, -2.9912],
+    ));
+    c.camera.min_range_m = 0.3899;
+    let field = |height_m: f64| {
+        vec![
+            Element::Rough {
+                amplitude_m: 0.025,
+                correlation_m: 0.117_586_658,
+                seed: 6_358_269_668_251_013_284,
+            },
+            rock(0.7832, -0.3279, 0.0753, 0.0493),
+            rock(2.1856, -0.3438, 0.1095, 0.0601),
+            rock(1.2406, -0.3311, 0.1360, height_m),
+            rock(1.7146, -0.4040, 0.0985, 0.0791),
+            rock(1.6488, 0.5084, 0.0809, 0.0530),
+            rock(2.7135, -0.3365, 0.1225, 0.0681),
+        ]
+    };
+    go_low_stop_tall(field, 0.0885, &c, 7_001_006, (Side::Right, None));
+}
+
+#[test]
 fn a_tall_mound_whose_top_the_image_s_top_edge_cuts_is_never_go() {
     // A Kinect v1 0.98 m high, rolled 6.5° and pitched 43.7°, over lumpy ground with
     // stones (`sweep -- natural 200 6822 random 7` #34, clean and noisy). The image's

@@ -180,11 +180,15 @@ pub fn steps_and_slopes(
 /// Mark the sharp tops of strip `iy` (its seen cells, `strip`): where the strip reads
 /// a cell's one surface (crest and foot alike), higher than the cells just before and
 /// after it, than anything within a wheel radius past it, and at least as high as the
-/// seen cells beside it across, that cell's `peak` becomes its top voxel's highest
-/// point ([`Cell::peak`]). Over a sharp apex (a cone, a narrow mound) the surface's
-/// mean lies 2-4 cm under it. Only a top more than a wheel radius over a cell within a
-/// step's reach before it counts (the rest cannot make a step). Returns whether the
-/// strip has any.
+/// seen cells beside it across, and whose mean lies more than rough ground's spread
+/// ([`ROUGH_SPREAD_M`]) under its top voxel's highest point ([`Cell::peak`]), that
+/// cell's `peak` becomes that point. Over a sharp apex (a cone, a narrow mound) the
+/// surface's mean lies 2-4 cm under it; a rounded or flat top (a rock, a boulder) it
+/// reads within a centimetre, and the highest point adds only depth noise (an 8.8 cm
+/// rock on rough ground, 0.4 cm under it, then stood over a wheel radius above the
+/// ground before it and stopped the rover: `sweep -- families 100 7001 random` #6).
+/// Only a top more than a wheel radius over a cell within a step's reach before it
+/// counts (the rest cannot make a step). Returns whether the strip has any.
 ///
 /// The other cells keep their means: rough ground's highest points stand 1-2 cm over
 /// them (more with depth noise), and a face along the strip (a ramp's side, a
@@ -227,7 +231,17 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
             .iter()
             .take_while(|c| c.x - here.x <= r)
             .all(|c| c.z <= here.z);
-        if one_surface && top && cell.peak - floor > r && not_under(iy - 1) && not_under(iy + 1) {
+        // Sharp: its mean lies more than rough ground's spread under its highest
+        // point. A rounded or flat top (a rock, a boulder, a bump) the mean reads
+        // well, and its highest point only adds depth noise.
+        let sharp = cell.peak - here.z > ROUGH_SPREAD_M;
+        if one_surface
+            && sharp
+            && top
+            && cell.peak - floor > r
+            && not_under(iy - 1)
+            && not_under(iy + 1)
+        {
             strip[k].peak = cell.peak;
             any = true;
         }
