@@ -163,18 +163,32 @@ pub fn steps_and_slopes(
             wheel_heights(strip, r);
             let min_gap = f.cfg.analysis.gap_min_cells as usize;
             let limits = (r, tan_max, wheelbase, min_gap);
-            if !strip_hazards(strip, region, limits, (vs, false), verdict)
-                && sharp_tops(f, iy, strip)
-            {
-                // A rise to a sharp top's highest point: the mean read it low.
-                for c in strip.iter_mut() {
-                    std::mem::swap(&mut c.z, &mut c.peak);
-                }
-                wheel_heights(strip, r);
-                strip_hazards(strip, region, limits, (vs, true), verdict);
+            if !strip_hazards(strip, region, limits, (vs, false), verdict) {
+                sharp_top_steps(f, (iy, region), strip, limits, verdict);
             }
         }
     }
+}
+
+/// The step test again on strip `iy` of `region` (its seen cells, `strip`, wheel
+/// heights set; `limits` as [`strip_hazards`] takes them), for rising steps only,
+/// with its sharp tops ([`sharp_tops`]) at their highest points, when it has any: a
+/// rise to a sharp top's highest point, which the mean read low.
+fn sharp_top_steps(
+    f: &Frame,
+    (iy, region): (usize, Region),
+    strip: &mut [StripCell],
+    limits: (f32, f32, f32, usize),
+    verdict: &mut Verdict,
+) {
+    if !sharp_tops(f, iy, strip) {
+        return;
+    }
+    for c in strip.iter_mut() {
+        std::mem::swap(&mut c.z, &mut c.peak);
+    }
+    wheel_heights(strip, limits.0);
+    strip_hazards(strip, region, limits, (f.spec.voxel_m, true), verdict);
 }
 
 /// Mark the sharp tops of strip `iy` (its seen cells, `strip`): where the strip reads
