@@ -55,8 +55,8 @@ pub(crate) struct StripCell {
     pub ix: usize,
     /// Whether the cell is at or past the sensor's horizon ([`Frame::past`]).
     pub past: bool,
-    /// The highest point of the cell's surface the strip reads, metres
-    /// ([`crate::grid::Cell::peak`] where that is its upper surface; `z` otherwise).
+    /// `z`, metres; for a sharp top (`crossing::sharp_tops`) its top voxel's highest
+    /// point ([`crate::grid::Cell::peak`]). The sharp-top pass swaps the two.
     pub peak: f32,
     /// Where a wheel resting on the cell has its lowest point, metres: `z`, or
     /// higher where a neighbour within a wheel radius holds the wheel up (see
