@@ -70,9 +70,13 @@ pub(super) fn strip_hazards(
     // and lowest wheels: such a cell is skipped without looking at its pairs.
     let (low, high) = wheel_span(strip);
     let all_finite = strip.iter().all(|c| c.wheel.is_finite());
-    // Rises only: steps, which rise within 3.5 voxels, to a sharp top (a cell whose
+    // Rises only: steps, which rise within their reach, to a sharp top (a cell whose
     // `z` and `peak` differ) or a cell whose wheel it holds up.
-    let reach = if rises_only { 3.5 * vs } else { f32::INFINITY };
+    let reach = if rises_only {
+        STEP_REACH_VOXELS * vs
+    } else {
+        f32::INFINITY
+    };
     for (i, a) in strip.iter().enumerate() {
         let (xi, zi) = (a.x, a.wheel);
         if all_finite && high - zi <= r && zi - low <= r {
@@ -107,7 +111,7 @@ pub(super) fn strip_hazards(
                 break; // a bound that proves nothing: the view ends here
             }
             if dx > 0.0 && dz.abs() >= tan_max * dx {
-                let kind = if dx <= 3.5 * vs {
+                let kind = if dx <= STEP_REACH_VOXELS * vs {
                     // A window on one line under the limit: a rough ramp's bumps. Every
                     // window on one line over it: a ramp too steep, not a step (which
                     // leaves no window on one line).
@@ -438,6 +442,10 @@ fn line_slope(run: &[StripCell]) -> Option<f32> {
 /// the step anywhere in it), well over [`ROUGH_LINE_RMS_M`]; a longer window would dilute
 /// it.
 const STEP_WINDOW_MAX_M: f32 = 0.6;
+
+/// How far a height change of more than a wheel radius, at or above the slope limit,
+/// may run to be a step, voxels (0.175 m at 5 cm); over longer runs it is a slope.
+pub(super) const STEP_REACH_VOXELS: f32 = 3.5;
 
 /// The least-squares slope |dz/dx| of a run's wheel heights: on rough ground the
 /// ends of a run may sit on a dip and a bump, steeper than the ground between.

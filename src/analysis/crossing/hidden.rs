@@ -7,6 +7,7 @@ use super::gaps::from_rover_ground;
 use super::{
     followed, line_fit, Frame, Region, ROUGH_LINE_RMS_M, ROUGH_SPREAD_M, UNSEEN_FOOT_MARGIN_M,
 };
+use crate::analysis::low_step;
 use crate::grid::Cell;
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
@@ -295,7 +296,7 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let rover = &f.cfg.rover;
     let tan_max = (rover.max_slope_deg as f32).to_radians().tan();
-    let (wheelbase, r) = (rover.wheelbase_m as f32, rover.wheel_radius_m as f32);
+    let wheelbase = rover.wheelbase_m as f32;
     let s = f.spec;
     let found = [Region::Left, Region::Belly, Region::Right].map(|region| {
         let (mut tall, mut over, mut nearest) = (0usize, 0usize, f32::INFINITY);
@@ -383,7 +384,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 any_nearest = any_nearest.min(foot.0);
                 if steep {
                     tall += 1;
-                    over += usize::from(rise > r + UNSEEN_FOOT_MARGIN_M);
+                    over += usize::from(!low_step(rise, rover));
                     nearest = nearest.min(foot.0);
                 }
             }

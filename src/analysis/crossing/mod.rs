@@ -14,7 +14,7 @@ use crate::grid::Cell;
 use crate::verdict::Verdict;
 pub use belly::belly;
 pub(crate) use belly::{median, track_medians};
-use climb::{strip_hazards, wheel_heights};
+use climb::{strip_hazards, wheel_heights, STEP_REACH_VOXELS};
 use faces::{floor_beside_fringe, fringe_of_wall, slopes_across, unresolved_ground, wall_goes_on};
 pub(crate) use faces::{ground_beside_face, unresolved_face_along};
 pub use gaps::{gaps, GRAZING_DEG};
@@ -237,7 +237,7 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
         let floor = strip[..k]
             .iter()
             .rev()
-            .take_while(|c| here.x - c.x <= 3.5 * s.voxel_m + r)
+            .take_while(|c| here.x - c.x <= STEP_REACH_VOXELS * s.voxel_m + r)
             .fold(f32::INFINITY, |m, c| m.min(c.z));
         // A top: nothing within a wheel radius past it stands higher (a ramp rising
         // under the limit makes a cell a local maximum every few cells with noise).
