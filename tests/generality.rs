@@ -984,6 +984,53 @@ fn a_sharp_cone_whose_cells_read_its_apex_low_stops() {
 }
 
 #[test]
+fn a_stone_s_flank_sloping_across_a_strip_is_not_carried_past_the_stone() {
+    // A 320×240 camera 0.58 m high, rolled −3.6° and yawed 9.6°, over lumpy ground
+    // with stones (`sweep -- natural 200 7322 random 7` #23, clean and noisy). A
+    // 15.4 cm cap 1.75 m out in the right track; the strip along its inner flank reads
+    // the flank as a surface sloping across it, and past the cap, in its shadow, gets
+    // a few points of the ground on the strip's far side. Carried to the strip's
+    // centre line along the flank's slope, that ground read 4 cm higher, and the
+    // noisy frame went. The next strip across, on the flank's side, is unseen there:
+    // the slope does not go on. The same cap 9 cm high is go.
+    let mut c = mounted(
+        [0.258_795_846, -0.093_186_239, 0.583_697_562],
+        [-3.591_754_370, 24.586_890_689, 9.637_820_063],
+    );
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.482_016_004;
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.123_327_307,
+                seed: 17_668_372_192_814_885_003,
+            },
+            Element::stone(2.344_785, -0.359_535, 0.105_018, 0.072_176, StoneShape::Cap),
+            Element::stone(
+                2.006_504,
+                -0.355_953,
+                0.134_603,
+                0.070_965,
+                StoneShape::Mound,
+            ),
+            Element::stone(
+                1.053_476,
+                0.455_377,
+                0.063_056,
+                0.046_539,
+                StoneShape::Mound,
+            ),
+            Element::stone(2.098_847, 0.557_572, 0.088_170, 0.067_286, StoneShape::Cone),
+            Element::stone(1.487_429, -0.436_784, 0.085_178, 0.067_123, StoneShape::Cap),
+            Element::stone(1.748_681, -0.463_616, 0.150_966, height_m, StoneShape::Cap),
+        ]
+    };
+    let stop = (Decision::Stop, Side::Right, Some(HazardKind::Step));
+    go_low_not_tall(field, [0.09, 0.153_559], &c, 7_322_023, stop);
+}
+
+#[test]
 fn a_rounded_rock_whose_highest_point_only_adds_noise_is_climbed() {
     // A Kinect v2 0.96 m high, rolled −6.9° and pitched 37.8°, over rough ground with
     // rocks (`sweep -- families 100 7001 random` #6, clean and noisy). An 8.8 cm rock
@@ -2809,6 +2856,65 @@ fn a_sloping_edge_seen_by_a_low_camera_turned_towards_it_is_go_and_a_drop_beyond
         let v = analyse(vec![descent(g), pit], c);
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
     }
+}
+
+#[test]
+fn a_sloping_edge_whose_far_cells_see_only_its_low_side_is_go_and_a_drop_beyond_stops() {
+    // Ground falling away beyond the left track's inner edge, the edge drawn sloping
+    // over 9.7 cm, seen by a D435-like camera 1.15 m high rolled 5° and yawed −6°
+    // (`sweep -- bevelled 100 7506 random` #13). 2.8 m out the camera meets the
+    // edge's 77° slope at a few degrees: the track's edge strip, read along the slope
+    // across it (its cells' means), gets 3 points a cell there, all on the strip's
+    // low side. Their mean stood 12 cm under the strip's centre line on the slope, a
+    // `step` in the noisy frame.
+    let mut c = d435_like(
+        mounted(
+            [0.217_988_812, 0.073_742_888, 1.150_350_004],
+            [5.003_852_703, 32.657_385_940, -6.119_130_675],
+        ),
+        [
+            423.976_197_361,
+            422.916_633_948,
+            436.172_295_517,
+            232.655_524_670,
+        ],
+        0.441_645_534,
+    );
+    // The fields of view the sweep keeps consistent with the focal lengths (the
+    // noise model reads the horizontal one).
+    (c.camera.hfov_deg, c.camera.vfov_deg) = (90.003_216_578, 59.025_754_964);
+    let (toe, g) = (1.171_779_235, -14.333_856_020);
+    let edge = Extent::Bevelled {
+        from_m: 0.2,
+        to_m: 100.0,
+        side_m: 0.096_677_763,
+    };
+    let descent = |g| Element::ramp(toe, 0.45, g, 0.0, edge);
+    let [clean, noisy] = analyse_views(vec![descent(g)], &c, [None, Some(7_506_013)]);
+    assert_go(&clean, 9, toe, g, None);
+    assert_eq!(noisy.decision, Decision::Go, "{:?}", noisy.hazards);
+    assert_eq!(noisy.feature.map(|f| f.workcase), Some(9));
+    // Too steep, a 30 cm drop across the corridor beyond, a 15 cm step up on the
+    // descent drawn with the same sloping sides, or a pit under the belly band's half
+    // beside the edge: never go.
+    let v = analyse(vec![descent(-34.0)], &c);
+    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    let drop = Element::DropOff {
+        x_m: 2.2,
+        depth_m: 0.3,
+    };
+    let v = analyse(vec![descent(g), drop], &c);
+    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    let step = Element::Step {
+        x_m: 2.3,
+        height_m: 0.15,
+        extent: edge,
+    };
+    let v = analyse(vec![descent(g), step], &c);
+    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    let pit = block_at(2.2, 0.1, 0.4, 0.2, -1.0);
+    let v = analyse(vec![descent(g), pit], &c);
+    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
 }
 
 #[test]

@@ -181,6 +181,41 @@ pub(super) fn slopes_across(cell: &Cell, y_mid: f32, vs: f32) -> bool {
         && dy.abs() >= SIDE_MIN_VOXELS * vs
 }
 
+/// How steeply a cell that [`slopes_across`] its strip slopes across it, metres per
+/// metre of y (positive when it rises to the left): from its two bands' heights and
+/// centres, or with one band, from its top voxel over the points' mean. `None` when
+/// they lie too close sideways to give a slope (under half [`FACE_OFF_VOXELS`], the
+/// least [`slopes_across`] asks of a top voxel).
+pub(super) fn cross_slope(cell: &Cell, vs: f32) -> Option<f32> {
+    let ((z_a, y_a), (z_b, y_b)) = if cell.crest == cell.foot {
+        ((cell.top, cell.top_xy[1]), (cell.z, cell.y))
+    } else {
+        ((cell.crest, cell.crest_xy[1]), (cell.foot, cell.foot_xy[1]))
+    };
+    let dy = y_a - y_b;
+    (dy.abs() >= 0.5 * FACE_OFF_VOXELS * vs).then(|| (z_a - z_b) / dy)
+}
+
+/// The height on the strip's centre line `y_mid` of a cell whose one surface lies on
+/// one side of it (its points' mean off the line by more than [`SPREAD_OFF_VOXELS`]),
+/// in a strip read along a surface sloping across it at `cross` ([`cross_slope`] of
+/// the last cell read so): its mean carried to the centre line along that slope,
+/// metres. `None` for a cell with two surfaces, or one spread across it.
+///
+/// Far out, the camera meets a ramp's or a descent's side at a few degrees: the
+/// cells of the track's edge strip there get a handful of points, and some only on
+/// the strip's low side. Read as the strip's ground, their mean stood 12 cm below the
+/// cells before (the strip's centre line on the side), a `step` 2.8 m out on a
+/// half-plane descent whose side fades over 10 cm (`sweep -- bevelled 100 7506
+/// random` #13, noisy).
+pub(super) fn beside_slope(cell: &Cell, y_mid: f32, cross: f32, vs: f32) -> Option<f32> {
+    let off = cell.y - y_mid;
+    (cell.crest == cell.foot
+        && cell.top - cell.low < FACE_MIN_M
+        && off.abs() > SPREAD_OFF_VOXELS * vs)
+        .then_some(cell.z - off * cross)
+}
+
 /// Most sideways offset of the mean of a cell's points from the strip's centre line
 /// for [`slopes_across`], voxels: a ramp's sloping side put it within 0.1 of a voxel,
 /// a vertical side's points beside the ramp's top 0.13-0.3 (`sweep -- families 100
@@ -285,6 +320,64 @@ mod tests {
         let mut flat = c;
         flat.top = flat.low + 0.03;
         assert!(!slopes_across(&flat, MID, VS));
+    }
+
+    #[test]
+    fn a_cell_seeing_only_the_low_side_of_a_slope_across_is_read_on_the_centre_line() {
+        // A half-plane descent's edge sloping 77° across the left track's edge strip
+        // (y from 0.2 to 0.25), 2.77 m out (`sweep -- bevelled 100 7506 random` #13,
+        // noisy; to the millimetre): two bands 17 cm apart, 3.9 cm apart sideways.
+        let mid = 0.225;
+        let side = Cell {
+            n: 5,
+            x: 2.766,
+            y: 0.225,
+            z: -0.305,
+            top: -0.238,
+            peak: -0.233,
+            top_xy: [2.765, 0.209],
+            low: -0.406,
+            crest: -0.238,
+            foot: -0.406,
+            crest_xy: [2.765, 0.209],
+            foot_xy: [2.767, 0.248],
+        };
+        let k = cross_slope(&side, VS).unwrap();
+        assert!((k - (-0.238 + 0.406) / (0.209 - 0.248)).abs() < 1e-4, "{k}");
+        // The next cell's three points, all on the strip's low side, 12 cm under it.
+        let low_side = Cell {
+            n: 3,
+            x: 2.827,
+            y: 0.249,
+            z: -0.422,
+            top: -0.422,
+            peak: -0.416,
+            top_xy: [2.827, 0.249],
+            low: -0.422,
+            crest: -0.422,
+            foot: -0.422,
+            crest_xy: [2.827, 0.249],
+            foot_xy: [2.827, 0.249],
+        };
+        let z = beside_slope(&low_side, mid, k, VS).unwrap();
+        assert!(
+            (z - (-0.422 - 0.024 * k)).abs() < 1e-4 && (z - side.z).abs() < 0.03,
+            "{z}"
+        );
+        // Points spread across the strip, or two surfaces: read as they are.
+        let centred = Cell {
+            y: mid + 0.005,
+            ..low_side
+        };
+        assert_eq!(beside_slope(&centred, mid, k, VS), None);
+        assert_eq!(beside_slope(&side, mid, k, VS), None);
+        // Bands one above the other (a face across the strip): no slope across.
+        let step = Cell {
+            crest_xy: [2.78, 0.226],
+            foot_xy: [2.75, 0.224],
+            ..side
+        };
+        assert_eq!(cross_slope(&step, VS), None);
     }
 
     #[test]

@@ -15,7 +15,10 @@ use crate::verdict::Verdict;
 pub use belly::belly;
 pub(crate) use belly::{median, track_medians};
 use climb::{strip_hazards, wheel_heights, STEP_REACH_VOXELS};
-use faces::{floor_beside_fringe, fringe_of_wall, slopes_across, unresolved_ground, wall_goes_on};
+use faces::{
+    beside_slope, cross_slope, floor_beside_fringe, fringe_of_wall, slopes_across,
+    unresolved_ground, wall_goes_on,
+};
 pub(crate) use faces::{ground_beside_face, unresolved_face_along};
 pub use gaps::{gaps, GRAZING_DEG};
 pub use hidden::{blind_rise, hidden_tops, steep_exit};
@@ -88,6 +91,9 @@ pub fn steps_and_slopes(
             // Whether the strip read the last seen cell's mean height: its one
             // surface sloped across the strip ([`slopes_across`]).
             let mut sloped = false;
+            // How steeply the last cells read so sloped across the strip.
+            let mut cross: Option<f32> = None;
+            let y_mid = f.spec.y_centre(iy);
             for ix in 0..f.spec.nx {
                 let c = f.spec.cell(ix, iy);
                 if !f.seen[c] {
@@ -98,8 +104,7 @@ pub fn steps_and_slopes(
                 let carried = continued(last, cell.x, tan_max);
                 let along = ground_along(f, ix, iy, past);
                 // Past the horizon, only the fringe of the wall seen before.
-                let fringe =
-                    past && along.is_none() && wall_goes_on(cell, wall, f.spec.y_centre(iy), vs);
+                let fringe = past && along.is_none() && wall_goes_on(cell, wall, y_mid, vs);
                 // A surface sloping across the strip (a ramp's side drawn sloping, in
                 // the track's edge strip) has no upper and lower surface to choose
                 // from: its bands are parts of one slope, and which of them continues
@@ -107,7 +112,7 @@ pub fn steps_and_slopes(
                 // the ground on the strip's centre line. Read from its bands, the
                 // strip jumped 13 cm where the lower band ran short (`sweep --
                 // bevelled 60 904 default 0` #24, a `step`).
-                let mut across = !past && slopes_across(cell, f.spec.y_centre(iy), vs);
+                let mut across = !past && slopes_across(cell, y_mid, vs);
                 let z = if across {
                     cell.z
                 } else if let Some(z) = along {
@@ -127,7 +132,8 @@ pub fn steps_and_slopes(
                         cell.top.max(cell.z)
                     }
                 } else {
-                    let (z, mean) = continuing(cell, carried, sloped);
+                    let beside = cross.and_then(|k| slope_goes_on(f, ix, iy, k));
+                    let (z, mean) = continuing(cell, carried, sloped, beside);
                     across = mean;
                     z
                 };
@@ -142,13 +148,14 @@ pub fn steps_and_slopes(
                 wall = match (along, wall) {
                     (Some(_), _) => Some([cell.x, highest, cell.top_xy[1]]),
                     (None, Some([_, top, top_y])) if fringe => Some([cell.x, top, top_y]),
-                    (None, _) if !past && fringe_of_wall(cell, z, f.spec.y_centre(iy), r, vs) => {
+                    (None, _) if !past && fringe_of_wall(cell, z, y_mid, r, vs) => {
                         Some([cell.x, highest, cell.top_xy[1]])
                     }
                     _ => None,
                 };
                 if !past {
                     sloped = across;
+                    cross = across.then(|| cross_slope(cell, vs).or(cross)).flatten();
                 }
                 last = [last[1], Some((cell.x, z))];
                 strip.push(StripCell {
@@ -279,14 +286,43 @@ fn ground_along(f: &Frame, ix: usize, iy: usize, past: bool) -> Option<f32> {
     beside.or_else(|| unresolved_ground(cell, (f.spec.x_centre(ix), y_mid), vs, f.camera[1]))
 }
 
+/// Cell (`ix`, `iy`)'s height on its strip's centre line when its points lie on one
+/// side of a slope across the strip at `cross` ([`beside_slope`]), metres, if the
+/// slope goes on there: the next strip across on the slope's other side is seen in
+/// that row (not past the horizon) at least as far up (or down) as the height read.
+/// A stone's flank sloping across a strip ends with the stone: past it (the next
+/// strip across in its shadow) the ground beside it is read as it is. Carried along
+/// the flank's slope, that ground past a 15.4 cm cap read 4 cm higher and the cap's
+/// stop was lost (`sweep -- natural 200 7322 random 7` #23, noisy, a go).
+fn slope_goes_on(f: &Frame, ix: usize, iy: usize, cross: f32) -> Option<f32> {
+    let (cell, y_mid, vs) = (
+        &f.cells[f.spec.cell(ix, iy)],
+        f.spec.y_centre(iy),
+        f.spec.voxel_m,
+    );
+    let z = beside_slope(cell, y_mid, cross, vs)?;
+    let other = if cell.y > y_mid {
+        iy.checked_sub(1)?
+    } else {
+        Some(iy + 1).filter(|&j| j < f.spec.ny)?
+    };
+    let c = f.spec.cell(ix, other);
+    let beyond = (f.seen[c] && !f.past[c]).then_some(f.cells[c].z)?;
+    ((beyond - z) * (z - cell.z) >= 0.0).then_some(z)
+}
+
 /// Of a seen cell's two surfaces, the one that continues the strip (its last height
 /// carried on at its slope, up to passable, `carried`), metres; or, where the strip
 /// read the last cell's mean (`sloped`), this one's mean when it continues the strip
-/// better. Also whether the mean was read. A sloping side's cells do not all pass
-/// [`slopes_across`] (noise and the voxel layers move their bands), and a strip
-/// switching between means and bands jumps by 4-5 cm (#78 of `sweep -- bevelled 100
-/// 901 default 9`, a `slope`).
-fn continuing(cell: &Cell, carried: Option<f32>, sloped: bool) -> (f32, bool) {
+/// better, or its height on the centre line when its points lie on one side of the
+/// slope (`beside`, [`beside_slope`]). Also whether a mean was read. A sloping side's
+/// cells do not all pass [`slopes_across`] (noise and the voxel layers move their
+/// bands), and a strip switching between means and bands jumps by 4-5 cm (#78 of
+/// `sweep -- bevelled 100 901 default 9`, a `slope`).
+fn continuing(cell: &Cell, carried: Option<f32>, sloped: bool, beside: Option<f32>) -> (f32, bool) {
+    if let Some(z) = beside.filter(|_| sloped) {
+        return (z, true);
+    }
     let near = carried.unwrap_or(cell.foot);
     let surface = if (cell.crest - near).abs() <= (cell.foot - near).abs() {
         cell.crest
