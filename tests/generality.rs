@@ -2790,25 +2790,35 @@ fn ground_falling_away_beside_a_track_over_a_sloping_edge_is_go_and_a_drop_beyon
             to_m,
             side_m,
         };
-        let descent = |g| Element::ramp(toe, y, g, 0.0, edge);
-        let [clean, noisy] = analyse_views(vec![descent(g)], &c, [None, Some(seed)]);
-        assert_go(&clean, wc, toe, g, None);
-        assert_eq!(noisy.decision, Decision::Go, "{:?}", noisy.hazards);
-        assert_eq!(noisy.feature.map(|f| f.workcase), Some(wc));
-        // Too steep, a 30 cm drop across the corridor beyond, or a pit under the
-        // belly band's half beside the edge: never go.
-        let v = analyse(vec![descent(-34.0)], &c);
-        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-        let drop = Element::DropOff {
-            x_m: 2.2,
-            depth_m: 0.3,
-        };
-        let v = analyse(vec![descent(g), drop], &c);
-        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-        let pit = block_at(2.2, 0.1_f64.copysign(y), 0.4, 0.2, -1.0);
-        let v = analyse(vec![descent(g), pit], &c);
-        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        descent_beside_a_track_goes_and_worse_never(&c, (toe, y, g, edge), (wc, seed));
     }
+}
+
+/// A descent (toe `toe` m, read at `y` m, gradient `g`°, over `edge`) seen from `c`'s
+/// rig is go with workcase `wc`, clean and with noise seeded `seed`; the same descent
+/// 34° steep, with a 30 cm drop across the corridor beyond (2.2 m), or with a pit
+/// under the belly band's half beside the edge, is never go.
+fn descent_beside_a_track_goes_and_worse_never(
+    c: &Config,
+    (toe, y, g, edge): (f64, f64, f64, Extent),
+    (wc, seed): (u8, u64),
+) {
+    let descent = |g| Element::ramp(toe, y, g, 0.0, edge);
+    let [clean, noisy] = analyse_views(vec![descent(g)], c, [None, Some(seed)]);
+    assert_go(&clean, wc, toe, g, None);
+    assert_eq!(noisy.decision, Decision::Go, "{:?}", noisy.hazards);
+    assert_eq!(noisy.feature.map(|f| f.workcase), Some(wc));
+    let v = analyse(vec![descent(-34.0)], c);
+    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    let drop = Element::DropOff {
+        x_m: 2.2,
+        depth_m: 0.3,
+    };
+    let v = analyse(vec![descent(g), drop], c);
+    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    let pit = block_at(2.2, 0.1_f64.copysign(y), 0.4, 0.2, -1.0);
+    let v = analyse(vec![descent(g), pit], c);
+    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
 }
 
 #[test]
@@ -2837,24 +2847,7 @@ fn a_sloping_edge_seen_by_a_low_camera_turned_towards_it_is_go_and_a_drop_beyond
             to_m: 100.0,
             side_m,
         };
-        let descent = |g| Element::ramp(toe, 0.45, g, 0.0, edge);
-        let [clean, noisy] = analyse_views(vec![descent(g)], c, [None, Some(seed)]);
-        assert_go(&clean, 9, toe, g, None);
-        assert_eq!(noisy.decision, Decision::Go, "{:?}", noisy.hazards);
-        assert_eq!(noisy.feature.map(|f| f.workcase), Some(9));
-        // Too steep, a 30 cm drop across the corridor beyond, or a pit under the
-        // belly band's half beside the edge: never go.
-        let v = analyse(vec![descent(-34.0)], c);
-        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-        let drop = Element::DropOff {
-            x_m: 2.2,
-            depth_m: 0.3,
-        };
-        let v = analyse(vec![descent(g), drop], c);
-        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-        let pit = block_at(2.2, 0.1, 0.4, 0.2, -1.0);
-        let v = analyse(vec![descent(g), pit], c);
-        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        descent_beside_a_track_goes_and_worse_never(c, (toe, 0.45, g, edge), (9, seed));
     }
 }
 
@@ -2889,31 +2882,14 @@ fn a_sloping_edge_whose_far_cells_see_only_its_low_side_is_go_and_a_drop_beyond_
         to_m: 100.0,
         side_m: 0.096_677_763,
     };
-    let descent = |g| Element::ramp(toe, 0.45, g, 0.0, edge);
-    let [clean, noisy] = analyse_views(vec![descent(g)], &c, [None, Some(7_506_013)]);
-    assert_go(&clean, 9, toe, g, None);
-    assert_eq!(noisy.decision, Decision::Go, "{:?}", noisy.hazards);
-    assert_eq!(noisy.feature.map(|f| f.workcase), Some(9));
-    // Too steep, a 30 cm drop across the corridor beyond, a 15 cm step up on the
-    // descent drawn with the same sloping sides, or a pit under the belly band's half
-    // beside the edge: never go.
-    let v = analyse(vec![descent(-34.0)], &c);
-    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-    let drop = Element::DropOff {
-        x_m: 2.2,
-        depth_m: 0.3,
-    };
-    let v = analyse(vec![descent(g), drop], &c);
-    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    descent_beside_a_track_goes_and_worse_never(&c, (toe, 0.45, g, edge), (9, 7_506_013));
+    // A 15 cm step up on the descent, drawn with the same sloping sides: never go.
     let step = Element::Step {
         x_m: 2.3,
         height_m: 0.15,
         extent: edge,
     };
-    let v = analyse(vec![descent(g), step], &c);
-    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-    let pit = block_at(2.2, 0.1, 0.4, 0.2, -1.0);
-    let v = analyse(vec![descent(g), pit], &c);
+    let v = analyse(vec![Element::ramp(toe, 0.45, g, 0.0, edge), step], &c);
     assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
 }
 
