@@ -91,7 +91,8 @@ pub fn steps_and_slopes(
             // Whether the strip read the last seen cell's mean height: its one
             // surface sloped across the strip ([`slopes_across`]).
             let mut sloped = false;
-            // How steeply the last cells read so sloped across the strip.
+            // How steeply the last cells read so sloped across the strip: `None`
+            // unless `sloped`.
             let mut cross: Option<f32> = None;
             let y_mid = f.spec.y_centre(iy);
             for ix in 0..f.spec.nx {
@@ -315,12 +316,13 @@ fn slope_goes_on(f: &Frame, ix: usize, iy: usize, cross: f32) -> Option<f32> {
 /// carried on at its slope, up to passable, `carried`), metres; or, where the strip
 /// read the last cell's mean (`sloped`), this one's mean when it continues the strip
 /// better, or its height on the centre line when its points lie on one side of the
-/// slope (`beside`, [`beside_slope`]). Also whether a mean was read. A sloping side's
+/// slope (`beside`, [`beside_slope`]: given only where the strip read the last cell's
+/// mean). Also whether a mean was read. A sloping side's
 /// cells do not all pass [`slopes_across`] (noise and the voxel layers move their
 /// bands), and a strip switching between means and bands jumps by 4-5 cm (#78 of
 /// `sweep -- bevelled 100 901 default 9`, a `slope`).
 fn continuing(cell: &Cell, carried: Option<f32>, sloped: bool, beside: Option<f32>) -> (f32, bool) {
-    if let Some(z) = beside.filter(|_| sloped) {
+    if let Some(z) = beside {
         return (z, true);
     }
     let near = carried.unwrap_or(cell.foot);
