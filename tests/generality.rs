@@ -2757,6 +2757,85 @@ fn a_one_track_ramp_whose_side_slopes_across_its_edge_strip_is_go_and_a_step_on_
 }
 
 #[test]
+fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_stops() {
+    // A ramp under each track, their sides drawn sloping over 3-4 cm: far out a side
+    // stands 75-85° across the track's edge strip, whose cells hold its points and
+    // the ramp's top beside them, their means 6-8 cm under the top. The strip, read
+    // along the side by those means, met a cell showing the side as a face along it
+    // and took the ground beside the face, the ramp's top: a 9 cm jump, a `step`
+    // where the view ends (`sweep -- bevelled 100 7506 random` #75, noisy, a Kinect
+    // v2 0.72 m high). Reading the means, the strip switched to a band where the band
+    // continued it better by 1 mm, a 7 cm jump onto the ramp's top 2.8 m out, a
+    // `step` (`bevelled 100 902 random 9` #87, clean, a 320×240 camera 0.66 m high,
+    // with the first rule alone).
+    let mut kinect = kinect_v2(mounted(
+        [0.285_513_211, -0.069_689_588, 0.715_517_222],
+        [6.184_063_155, 35.951_418_994, -6.184_866_987],
+    ));
+    kinect.camera.min_range_m = 0.325_320_214;
+    let mut qvga = mounted(
+        [0.210_273_337, 0.044_917_314, 0.655_341_262],
+        [1.866_437_364, 23.822_063_121, -2.806_347_365],
+    );
+    (qvga.camera.width, qvga.camera.height) = (320, 240);
+    qvga.camera.min_range_m = 0.325_485_310;
+    // Per scene: the rig, (toe, gradient, side) of the left and the right ramp, the
+    // workcase of the nearer one, and the noise seed.
+    for (c, [(toe_l, g_l, side_l), (toe_r, g_r, side_r)], wc, seed) in [
+        (
+            kinect,
+            [
+                (1.051_525_087, 18.605_138_704, 0.039_189_950),
+                (0.720_902_993, 24.601_431_764, 0.072_578_776),
+            ],
+            5,
+            7_506_075,
+        ),
+        (
+            qvga,
+            [
+                (0.990_604_438, 19.998_497_519, 0.032_581_607),
+                (1.343_406_989, 19.065_190_237, 0.033_342_561),
+            ],
+            3,
+            902_087,
+        ),
+    ] {
+        let left = Extent::Bevelled {
+            from_m: 0.2,
+            to_m: 0.7,
+            side_m: side_l,
+        };
+        let right = Extent::Bevelled {
+            from_m: -0.7,
+            to_m: -0.2,
+            side_m: side_r,
+        };
+        let ramps = |g_l| {
+            vec![
+                Element::ramp(toe_l, 0.45, g_l, 0.0, left),
+                Element::ramp(toe_r, -0.45, g_r, 0.0, right),
+            ]
+        };
+        let (toe, g) = if wc == 3 { (toe_l, g_l) } else { (toe_r, g_r) };
+        let [clean, noisy] = analyse_views(ramps(g_l), &c, [None, Some(seed)]);
+        assert_go(&clean, wc, toe, g, None);
+        assert_noisy_go(&noisy, wc, toe, g);
+        // The left ramp too steep, or a 15 cm step on it drawn the same way: never go.
+        let v = analyse(ramps(34.0), &c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        let mut stepped = ramps(g_l);
+        stepped.push(Element::Step {
+            x_m: toe_l + 0.5,
+            height_m: 0.15,
+            extent: left,
+        });
+        let v = analyse(stepped, &c);
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
+#[test]
 fn ground_falling_away_beside_a_track_over_a_sloping_edge_is_go_and_a_drop_beyond_stops() {
     // Ground falling away beyond a track's inner edge, the edge drawn sloping over
     // 10-13 cm (`Extent::Bevelled`): the belly band's edge strip holds the slope's

@@ -116,25 +116,16 @@ pub fn steps_and_slopes(
                 let mut across = !past && slopes_across(cell, y_mid, vs);
                 let z = if across {
                     cell.z
-                } else if let Some(z) = along {
-                    // Past the horizon a lower bound: beside such a face the top is
-                    // the face's, and the bound the ground's.
-                    z
-                } else if past {
-                    if fringe {
-                        floor_beside_fringe(cell)
-                    } else if sloped {
-                        // Where the strip read the mean up to the horizon, the mean
-                        // of what is seen of the cell past it: its top is the slope's
-                        // high side, which stood 19 cm over the strip and made a
-                        // `step` (#23, #54).
-                        cell.z
-                    } else {
-                        cell.top.max(cell.z)
-                    }
+                } else if past && along.is_none() {
+                    beyond_horizon(cell, fringe, sloped)
                 } else {
-                    let beside = cross.and_then(|k| slope_goes_on(f, ix, iy, k));
-                    let (z, mean) = continuing(cell, carried, sloped, beside);
+                    // Beside a face along the strip, its ground ([`ground_along`]);
+                    // past the horizon a lower bound: beside such a face the top is
+                    // the face's, and the bound the ground's.
+                    let beside = (along.is_none())
+                        .then(|| cross.and_then(|k| slope_goes_on(f, ix, iy, k)))
+                        .flatten();
+                    let (z, mean) = continuing(cell, along, (carried, sloped), beside);
                     across = mean;
                     z
                 };
@@ -312,29 +303,65 @@ fn slope_goes_on(f: &Frame, ix: usize, iy: usize, cross: f32) -> Option<f32> {
     ((beyond - z) * (z - cell.z) >= 0.0).then_some(z)
 }
 
-/// Of a seen cell's two surfaces, the one that continues the strip (its last height
-/// carried on at its slope, up to passable, `carried`), metres; or, where the strip
-/// read the last cell's mean (`sloped`), this one's mean when it continues the strip
-/// better, or its height on the centre line when its points lie on one side of the
-/// slope (`beside`, [`beside_slope`]: given only where the strip read the last cell's
-/// mean). Also whether a mean was read. A sloping side's
-/// cells do not all pass [`slopes_across`] (noise and the voxel layers move their
-/// bands), and a strip switching between means and bands jumps by 4-5 cm (#78 of
-/// `sweep -- bevelled 100 901 default 9`, a `slope`).
-fn continuing(cell: &Cell, carried: Option<f32>, sloped: bool, beside: Option<f32>) -> (f32, bool) {
+/// The height a strip reads on a seen cell its surface does not slope across: the
+/// ground beside a face along the strip (`along`, [`ground_along`]) where there is
+/// one; else its height on the centre line when its points lie on one side of a slope
+/// the strip reads across (`beside`, [`beside_slope`]: given only where the strip read
+/// the last cell's mean); else of its two surfaces the one that continues the strip
+/// (its last height carried on at its slope, up to passable, `carried`), metres. Where
+/// the strip read the last cell's mean (`sloped`), it reads this one's mean instead
+/// while that continues the strip within rough ground's spread ([`ROUGH_SPREAD_M`]) of
+/// the surface or ground, unless the mean is that surface (a cell with one surface:
+/// the slope across has ended). Also whether a mean was read.
+///
+/// A sloping side's cells do not all pass [`slopes_across`] (noise and the voxel
+/// layers move their bands, and far out a narrow side, 75-85° steep, shows as a face
+/// along the strip): a strip switching between means and bands jumps by 4-9 cm, as the
+/// mean lies farther under the ramp's top the higher the side stands (#78 of `sweep --
+/// bevelled 100 901 default 9`, a `slope`; `bevelled 100 7506 random` #75, a `step`).
+/// The margin keeps it on the means where the two continue it about as well: switching
+/// at a 1 mm difference, it jumped 7 cm onto a ramp's top 2.8 m out (`bevelled 100 902
+/// random 9` #87, a `step`).
+fn continuing(
+    cell: &Cell,
+    along: Option<f32>,
+    (carried, sloped): (Option<f32>, bool),
+    beside: Option<f32>,
+) -> (f32, bool) {
     if let Some(z) = beside {
         return (z, true);
     }
     let near = carried.unwrap_or(cell.foot);
-    let surface = if (cell.crest - near).abs() <= (cell.foot - near).abs() {
+    let surface = along.unwrap_or(if (cell.crest - near).abs() <= (cell.foot - near).abs() {
         cell.crest
     } else {
         cell.foot
-    };
-    if sloped && (cell.z - near).abs() < (surface - near).abs() {
+    });
+    // A cell whose one surface is its mean ends the reading of means.
+    if sloped
+        && cell.z != surface
+        && (cell.z - near).abs() < (surface - near).abs() + ROUGH_SPREAD_M
+    {
         (cell.z, true)
     } else {
         (surface, false)
+    }
+}
+
+/// The height a strip reads on a seen cell past the horizon with no face along the
+/// strip, metres: the floor beside the fringe of the wall seen before (`fringe`,
+/// [`floor_beside_fringe`]); where the strip read the mean up to the horizon
+/// (`sloped`), the mean of what is seen of the cell (its top is the slope's high side,
+/// which stood 19 cm over the strip and made a `step`: `sweep -- bevelled 60 904
+/// default 0` #23, #54); else its top, or its mean if higher: a lower bound on its
+/// height.
+fn beyond_horizon(cell: &Cell, fringe: bool, sloped: bool) -> f32 {
+    if fringe {
+        floor_beside_fringe(cell)
+    } else if sloped {
+        cell.z
+    } else {
+        cell.top.max(cell.z)
     }
 }
 
@@ -431,4 +458,57 @@ fn line_fit(points: impl Iterator<Item = (f32, f32)> + Clone) -> Option<(Plane, 
         )
     });
     Some((p, (ss / n).sqrt()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_strip_reading_means_keeps_to_them_beside_a_face_until_a_band_continues_it_better() {
+        // The right track's edge strip on a ramp whose side slopes over 3.3 cm,
+        // 2.83 m out (`sweep -- bevelled 100 902 random 9` #87, clean; to the
+        // millimetre): the side shows as a face along the strip, the ramp's top
+        // beside it 0.498 m, the cell's mean 0.420 m, and the strip carried on to
+        // 0.4595 m from cells whose means it read.
+        let cell = Cell {
+            n: 40,
+            x: 2.827,
+            y: -0.218,
+            z: 0.420,
+            top: 0.512,
+            peak: 0.520,
+            top_xy: [2.83, -0.205],
+            low: 0.28,
+            crest: 0.498,
+            foot: 0.300,
+            crest_xy: [2.83, -0.21],
+            foot_xy: [2.82, -0.245],
+        };
+        let beside_face = Some(0.498);
+        // The top continues the strip 1 mm better, within rough ground's spread:
+        // the mean, not a 7 cm jump.
+        let reading = continuing(&cell, beside_face, (Some(0.4595), true), None);
+        assert_eq!(reading, (0.420, true));
+        // A strip that read the last cell's band takes the ground beside the face.
+        let reading = continuing(&cell, beside_face, (Some(0.4595), false), None);
+        assert_eq!(reading, (0.498, false));
+        // Carried on to 0.48 m the top continues it better by 2.7 cm, over the
+        // spread: the strip switches to it.
+        let reading = continuing(&cell, beside_face, (Some(0.48), true), None);
+        assert_eq!(reading, (0.498, false));
+        // With no face along the strip, of the two bands the crest continues it.
+        let reading = continuing(&cell, None, (Some(0.48), true), None);
+        assert_eq!(reading, (0.498, false));
+        let reading = continuing(&cell, None, (Some(0.32), false), None);
+        assert_eq!(reading, (0.300, false));
+        // A cell with one surface, its mean: the strip reads it as that surface and
+        // stops reading means (kept on, it carried a stale slope across on to the
+        // next cells, and a 16.3 cm cone's `slope` was lost: `sweep -- natural 200
+        // 7508 random 7` #38, noisy, in a first version).
+        let mut one = cell;
+        (one.crest, one.foot) = (one.z, one.z);
+        let reading = continuing(&one, None, (Some(0.4595), true), None);
+        assert_eq!(reading, (0.420, false));
+    }
 }
