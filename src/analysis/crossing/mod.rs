@@ -467,10 +467,11 @@ mod tests {
     #[test]
     fn a_strip_reading_means_keeps_to_them_beside_a_face_until_a_band_continues_it_better() {
         // The right track's edge strip on a ramp whose side slopes over 3.3 cm,
-        // 2.83 m out (`sweep -- bevelled 100 902 random 9` #87, clean; to the
-        // millimetre): the side shows as a face along the strip, the ramp's top
-        // beside it 0.498 m, the cell's mean 0.420 m, and the strip carried on to
-        // 0.4595 m from cells whose means it read.
+        // 2.83 m out (`sweep -- bevelled 100 902 random 9` #87, clean; its heights
+        // to the millimetre, its positions, which this does not read, rounded): the
+        // side shows as a face along the strip, the ramp's top beside it 0.498 m,
+        // the cell's mean 0.420 m, and the strip carried on to 0.4595 m from cells
+        // whose means it read.
         let cell = Cell {
             n: 40,
             x: 2.827,
