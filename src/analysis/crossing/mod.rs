@@ -122,7 +122,8 @@ pub fn steps_and_slopes(
                     // Beside a face along the strip, its ground ([`ground_along`]);
                     // past the horizon a lower bound: beside such a face the top is
                     // the face's, and the bound the ground's.
-                    let beside = (along.is_none())
+                    let beside = along
+                        .is_none()
                         .then(|| cross.and_then(|k| slope_goes_on(f, ix, iy, k)))
                         .flatten();
                     let (z, mean) = continuing(cell, along, (carried, sloped), beside);
@@ -311,8 +312,9 @@ fn slope_goes_on(f: &Frame, ix: usize, iy: usize, cross: f32) -> Option<f32> {
 /// (its last height carried on at its slope, up to passable, `carried`), metres. Where
 /// the strip read the last cell's mean (`sloped`), it reads this one's mean instead
 /// while that continues the strip within rough ground's spread ([`ROUGH_SPREAD_M`]) of
-/// the surface or ground, unless the mean is that surface (a cell with one surface:
-/// the slope across has ended). Also whether a mean was read.
+/// the surface or ground, unless the mean is that surface (the cell's points span no
+/// more than one surface band: the slope across has ended). Also whether a mean was
+/// read.
 ///
 /// A sloping side's cells do not all pass [`slopes_across`] (noise and the voxel
 /// layers move their bands, and far out a narrow side, 75-85° steep, shows as a face
@@ -337,7 +339,7 @@ fn continuing(
     } else {
         cell.foot
     });
-    // A cell whose one surface is its mean ends the reading of means.
+    // A cell whose points lie in one surface band ends the reading of means.
     if sloped
         && cell.z != surface
         && (cell.z - near).abs() < (surface - near).abs() + ROUGH_SPREAD_M
@@ -503,8 +505,8 @@ mod tests {
         assert_eq!(reading, (0.498, false));
         let reading = continuing(&cell, None, (Some(0.32), false), None);
         assert_eq!(reading, (0.300, false));
-        // A cell with one surface, its mean: the strip reads it as that surface and
-        // stops reading means (kept on, it carried a stale slope across on to the
+        // A cell whose points span one surface band, its mean: the strip reads it as
+        // that surface and stops reading means (kept on, it carried a stale slope across on to the
         // next cells, and a 16.3 cm cone's `slope` was lost: `sweep -- natural 200
         // 7508 random 7` #38, noisy, in a first version).
         let mut one = cell;
