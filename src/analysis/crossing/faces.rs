@@ -169,7 +169,7 @@ pub(super) fn slopes_across(cell: &Cell, y_mid: f32, vs: f32) -> bool {
         return false;
     }
     if cell.crest == cell.foot {
-        let off = |y: f32| (cell.top_xy[1] - y).abs() >= 0.5 * FACE_OFF_VOXELS * vs;
+        let off = |y: f32| (cell.top_xy[1] - y).abs() >= TOP_OFF_VOXELS * vs;
         return off(cell.y) && off(y_mid);
     }
     let (dx, dy) = (
@@ -184,8 +184,8 @@ pub(super) fn slopes_across(cell: &Cell, y_mid: f32, vs: f32) -> bool {
 /// How steeply a cell that [`slopes_across`] its strip slopes across it, metres per
 /// metre of y (positive when it rises to the left): from its two bands' heights and
 /// centres, or with one band, from its top voxel over the points' mean. `None` when
-/// they lie too close sideways to give a slope (under half [`FACE_OFF_VOXELS`], the
-/// least [`slopes_across`] asks of a top voxel).
+/// they lie too close sideways to give a slope (under [`TOP_OFF_VOXELS`], the least
+/// [`slopes_across`] asks of a top voxel).
 pub(super) fn cross_slope(cell: &Cell, vs: f32) -> Option<f32> {
     let ((z_a, y_a), (z_b, y_b)) = if cell.crest == cell.foot {
         ((cell.top, cell.top_xy[1]), (cell.z, cell.y))
@@ -193,7 +193,7 @@ pub(super) fn cross_slope(cell: &Cell, vs: f32) -> Option<f32> {
         ((cell.crest, cell.crest_xy[1]), (cell.foot, cell.foot_xy[1]))
     };
     let dy = y_a - y_b;
-    (dy.abs() >= 0.5 * FACE_OFF_VOXELS * vs).then(|| (z_a - z_b) / dy)
+    (dy.abs() >= TOP_OFF_VOXELS * vs).then(|| (z_a - z_b) / dy)
 }
 
 /// The height on the strip's centre line `y_mid` of a cell whose one surface lies on
@@ -234,6 +234,10 @@ const FACE_MIN_M: f32 = 0.04;
 /// [`ground_beside_face`], voxels: a face hugs the cell's side (0.5), a surface spread
 /// across the cell centres on it (0), whatever the noise.
 pub(super) const FACE_OFF_VOXELS: f32 = 0.3;
+/// Least sideways distance, voxels, of a one-band cell's top voxel from its points'
+/// mean and from the strip's centre line for [`slopes_across`], and of the two heights
+/// [`cross_slope`] takes a slope from: half [`FACE_OFF_VOXELS`].
+const TOP_OFF_VOXELS: f32 = 0.5 * FACE_OFF_VOXELS;
 /// Least difference of the two surfaces' sideways offsets for [`ground_beside_face`],
 /// voxels.
 const SIDE_MIN_VOXELS: f32 = 0.2;
