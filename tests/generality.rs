@@ -175,9 +175,10 @@ fn a_trench_wall_whose_points_noise_scatters_still_runs_on_into_the_cut_cells() 
     // random` #47, noisy). In the first cell the image's top edge cuts, the wall's
     // fringe makes a band of its own, but the floor's few points there centre too
     // near the wall to be told apart from it: an 18 cm `step` 2.80 m out.
-    let mut c = mounted([0.1378, -0.0078, 0.9721], [-7.4202, 43.3113, -1.2377]);
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.3066;
+    let c = qvga(
+        mounted([0.1378, -0.0078, 0.9721], [-7.4202, 43.3113, -1.2377]),
+        0.3066,
+    );
     trench_goes_but_posts_on_its_floor_stop(&c, (1.1142, -8.1575, 0.2227), 5_701_047, [2.82, 2.87]);
 }
 
@@ -245,9 +246,10 @@ fn a_trench_wall_the_view_ends_along_is_no_step_but_a_post_where_it_ends_is() {
     // On a 320×240 camera 0.58 m high, a -13.8° descent under the right track met at
     // -53.6° (`oblique 60 11` #24, noisy): the wall's fringe runs on through two cut
     // cells, the last 16 cm past the last cell that resolved the wall.
-    let mut c = mounted([0.2886, -0.0796, 0.5770], [-0.2998, 34.5851, 7.6639]);
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.4367;
+    let c = qvga(
+        mounted([0.2886, -0.0796, 0.5770], [-0.2998, 34.5851, 7.6639]),
+        0.4367,
+    );
     let (toe, g) = (1.0932, -13.8411);
     let descent = vec![Element::ramp(toe, -0.45, g, -53.5803, RIGHT_TRACK)];
     for v in analyse_views(descent, &c, [None, Some(11_024)]) {
@@ -411,10 +413,10 @@ fn a_tall_rock_whose_foot_hides_behind_a_lower_one_is_no_low_step() {
 /// A 320×240 camera 0.9 m high pitched 20°, offset and yawed 9°: past 2.8 m its rows
 /// fall about one per cell on ground falling away at 12°.
 fn coarse_rig() -> Config {
-    let mut c = mounted([0.122, -0.068, 0.895], [-1.221, 19.517, 9.436]);
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.331;
-    c
+    qvga(
+        mounted([0.122, -0.068, 0.895], [-1.221, 19.517, 9.436]),
+        0.331,
+    )
 }
 
 /// A rock (a half-ellipsoid) at (`x_m`, `y_m`) of `radius_m` and `height_m`, metres.
@@ -445,6 +447,14 @@ fn d435_like(mut c: Config, [fx, fy, cx, cy]: [f64; 4], min_range_m: f64) -> Con
     (c.camera.width, c.camera.height) = (848, 480);
     (c.camera.fx, c.camera.fy) = (Some(fx), Some(fy));
     (c.camera.cx, c.camera.cy) = (Some(cx), Some(cy));
+    c.camera.min_range_m = min_range_m;
+    c
+}
+
+/// `c` with a 320×240 camera (the default 57°×43°), seeing from `min_range_m`
+/// (metres).
+fn qvga(mut c: Config, min_range_m: f64) -> Config {
+    (c.camera.width, c.camera.height) = (320, 240);
     c.camera.min_range_m = min_range_m;
     c
 }
@@ -737,9 +747,10 @@ fn a_boulder_whose_front_the_image_s_side_edge_cuts_is_never_go() {
     // ground among pebbles, shows its top and back: two inner strips start on it,
     // 12.4 cm and 14.3 cm over the rover's ground, with nothing seen before them
     // (`sweep -- families 100 6801 random` #7, clean and noisy, was a go).
-    let mut c = mounted([0.1934, -0.0747, 0.6392], [-5.1248, 33.7733, 4.3807]);
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.3711;
+    let c = qvga(
+        mounted([0.1934, -0.0747, 0.6392], [-5.1248, 33.7733, 4.3807]),
+        0.3711,
+    );
     let field = |height_m: f64| {
         vec![
             Element::Rough {
@@ -877,9 +888,10 @@ fn a_stone_with_a_broad_dip_of_lumpy_ground_past_it_is_climbed_down() {
     // wheel radius, into the dip. Over the wheelbase past it the ground is level within
     // its bumps (`sweep -- natural 200 7022 random 6` #187, clean and noisy, a `step`).
     // The same stone 15 cm high stops.
-    let mut c = mounted([0.2248, 0.0351, 1.0024], [9.1610, 31.9609, 6.3007]);
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.3655;
+    let c = qvga(
+        mounted([0.2248, 0.0351, 1.0024], [9.1610, 31.9609, 6.3007]),
+        0.3655,
+    );
     let field = |height_m: f64| {
         vec![
             Element::Lumpy {
@@ -963,9 +975,10 @@ fn a_sharp_cone_whose_cells_read_its_apex_low_stops() {
     // point of that cell's top voxel is 14.2 cm, 11.1-11.6 cm over the ground's
     // highest points before it: more than a wheel radius, a `step`. The same cone
     // 9 cm high is go.
-    let mut c = mounted([0.1763, -0.0602, 0.6677], [3.7100, 25.8762, 1.3697]);
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.4689;
+    let c = qvga(
+        mounted([0.1763, -0.0602, 0.6677], [3.7100, 25.8762, 1.3697]),
+        0.4689,
+    );
     let field = |height_m: f64| {
         vec![
             Element::Lumpy {
@@ -993,12 +1006,13 @@ fn a_stone_s_flank_sloping_across_a_strip_is_not_carried_past_the_stone() {
     // centre line along the flank's slope, that ground read 4 cm higher, and the
     // noisy frame went. The next strip across, on the flank's side, is unseen there:
     // the slope does not go on. The same cap 9 cm high is go.
-    let mut c = mounted(
-        [0.258_795_846, -0.093_186_239, 0.583_697_562],
-        [-3.591_754_370, 24.586_890_689, 9.637_820_063],
+    let c = qvga(
+        mounted(
+            [0.258_795_846, -0.093_186_239, 0.583_697_562],
+            [-3.591_754_370, 24.586_890_689, 9.637_820_063],
+        ),
+        0.482_016_004,
     );
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.482_016_004;
     let field = |height_m: f64| {
         vec![
             Element::Lumpy {
@@ -1097,12 +1111,13 @@ fn a_ramp_s_top_beside_its_vertical_side_is_not_taken_for_a_slope_across_the_str
     // on their edge, which pull the points' mean 0.15 of a voxel sideways. Read as one
     // surface sloping across the strip, the strip took their mean, 4-7 cm under the
     // ramp, then climbed back to the ramp: an 11 cm `step` at 2.80 m.
-    let mut c = mounted(
-        [0.291_857_077, -0.015_888_127, 0.783_633_429],
-        [5.746_111_348, 25.543_278_446, -8.220_322_721],
+    let c = qvga(
+        mounted(
+            [0.291_857_077, -0.015_888_127, 0.783_633_429],
+            [5.746_111_348, 25.543_278_446, -8.220_322_721],
+        ),
+        0.368_847_753,
     );
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.368_847_753;
     let (toe, g) = (1.198_434_763, 17.164_071_662);
     let ramps = |right_deg: f64| {
         vec![
@@ -1438,9 +1453,7 @@ fn a_rough_ramp_under_the_limit_seen_coarsely_makes_no_step() {
     // cells the bumps steepen it to 37° and lift it by a wheel radius, the wheel's
     // heights add another 2 cm where it steepens. The wheelbase of ground from that
     // run lies on one 25° line within rough ground's spread: a rough ramp, no step.
-    let mut c = mounted([0.096, 0.078, 0.84], [-1.155, 28.766, -0.109]);
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.4;
+    let c = qvga(mounted([0.096, 0.078, 0.84], [-1.155, 28.766, -0.109]), 0.4);
     let rough = Element::Rough {
         amplitude_m: 0.025,
         correlation_m: 0.10376,
@@ -1982,9 +1995,10 @@ fn a_boulder_whose_shadow_hides_the_ground_beside_it_is_never_go() {
     // no step along a strip is over a wheel radius: it was go, with the rocks taken
     // for a diagonal ramp. Past the shadow the strips see the ground again, back at
     // the boulder's foot: a ramp would still be rising there.
-    let mut c = mounted([0.042, 0.004, 0.603], [8.419, 17.401, 8.760]);
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.406;
+    let c = qvga(
+        mounted([0.042, 0.004, 0.603], [8.419, 17.401, 8.760]),
+        0.406,
+    );
     let field = |third: Element| {
         vec![
             Element::Rough {
@@ -2021,9 +2035,10 @@ fn a_face_measured_steeper_than_the_rover_climbs_is_never_go() {
     // pitched 44°, over a 34° ramp under the left track from 2.05 m (go, 32.4°).
     // `near_edge -- 300 17 far` #70, clean: a Kinect v1 0.63 m high, pitched 37° and
     // rolled 7°, over a 36° ramp across the corridor from 2.36 m (go, 33.3°).
-    let mut coarse = mounted([0.0746, -0.0448, 0.9682], [-1.7096, 43.862, -2.684]);
-    (coarse.camera.width, coarse.camera.height) = (320, 240);
-    coarse.camera.min_range_m = 0.496;
+    let coarse = qvga(
+        mounted([0.0746, -0.0448, 0.9682], [-1.7096, 43.862, -2.684]),
+        0.496,
+    );
     let mut rolled = mounted([0.178, 0.0612, 0.6309], [6.6178, 36.6631, 6.7969]);
     rolled.camera.min_range_m = 0.421;
     let coarse_ramp = Element::ramp(2.0473, 0.0, 33.895, 0.0, Extent::Left);
@@ -2110,9 +2125,7 @@ fn a_descent_whose_toe_is_below_the_image_is_go_and_a_drop_there_is_not() {
     // nearest cells are not seen. That is the descent's own blind zone, not unknown
     // ground; a drop there, with level ground below it, stays unknown.
     use rover_terrain::sim::families::footprint;
-    let mut c = mounted([0.134, -0.097, 1.145], [3.95, 25.74, 0.84]);
-    (c.camera.width, c.camera.height) = (320, 240);
-    c.camera.min_range_m = 0.333;
+    let c = qvga(mounted([0.134, -0.097, 1.145], [3.95, 25.74, 0.84]), 0.333);
     let (near, _) = footprint(&c);
     assert!((1.1..1.3).contains(&near), "seen from {near} m");
     for (gradient, alpha) in [(-15.6, 50.2), (-15.0, 0.0), (-18.0, -35.0), (-10.0, 30.0)] {
@@ -2773,12 +2786,13 @@ fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_s
         [6.184_063_155, 35.951_418_994, -6.184_866_987],
     ));
     kinect.camera.min_range_m = 0.325_320_214;
-    let mut qvga = mounted(
-        [0.210_273_337, 0.044_917_314, 0.655_341_262],
-        [1.866_437_364, 23.822_063_121, -2.806_347_365],
+    let qvga = qvga(
+        mounted(
+            [0.210_273_337, 0.044_917_314, 0.655_341_262],
+            [1.866_437_364, 23.822_063_121, -2.806_347_365],
+        ),
+        0.325_485_310,
     );
-    (qvga.camera.width, qvga.camera.height) = (320, 240);
-    qvga.camera.min_range_m = 0.325_485_310;
     // Per scene: the rig, (toe, gradient, side) of the left and the right ramp, the
     // workcase of the nearer one, and the noise seed.
     for (c, [(toe_l, g_l, side_l), (toe_r, g_r, side_r)], wc, seed) in [
@@ -2909,9 +2923,10 @@ fn a_sloping_edge_seen_by_a_low_camera_turned_towards_it_is_go_and_a_drop_beyond
     // 60°, and the camera met the belly's edge strip at 6.2°; on the edge itself, 70°
     // steep, it meets it at 2°. Farther out, the track's strips past the edge lie in
     // its shadow, and rows see no ground on the fall's low side at all.
-    let mut low_qvga = mounted([0.2618, -0.0722, 0.6997], [6.8813, 26.6572, 8.7738]);
-    (low_qvga.camera.width, low_qvga.camera.height) = (320, 240);
-    low_qvga.camera.min_range_m = 0.3519;
+    let low_qvga = qvga(
+        mounted([0.2618, -0.0722, 0.6997], [6.8813, 26.6572, 8.7738]),
+        0.3519,
+    );
     let mut low_v2 = kinect_v2(mounted(
         [0.0544, -0.0975, 0.5935],
         [5.6372, 33.4006, 8.2507],
