@@ -122,10 +122,7 @@ pub fn steps_and_slopes(
                     // Beside a face along the strip, its ground ([`ground_along`]);
                     // past the horizon a lower bound: beside such a face the top is
                     // the face's, and the bound the ground's.
-                    let beside = along
-                        .is_none()
-                        .then(|| cross.and_then(|k| slope_goes_on(f, ix, iy, k)))
-                        .flatten();
+                    let beside = cross.and_then(|k| slope_goes_on(f, ix, iy, k));
                     let (z, mean) = continuing(cell, along, (carried, sloped), beside);
                     across = mean;
                     z
@@ -330,7 +327,7 @@ fn continuing(
     (carried, sloped): (Option<f32>, bool),
     beside: Option<f32>,
 ) -> (f32, bool) {
-    if let Some(z) = beside {
+    if let (None, Some(z)) = (along, beside) {
         return (z, true);
     }
     let near = carried.unwrap_or(cell.foot);
@@ -506,9 +503,9 @@ mod tests {
         let reading = continuing(&cell, None, (Some(0.32), false), None);
         assert_eq!(reading, (0.300, false));
         // A cell whose points span one surface band, its mean: the strip reads it as
-        // that surface and stops reading means (kept on, it carried a stale slope across on to the
-        // next cells, and a 16.3 cm cone's `slope` was lost: `sweep -- natural 200
-        // 7508 random 7` #38, noisy, in a first version).
+        // that surface and stops reading means (kept on, it carried a stale slope
+        // across on to the next cells, and a 16.3 cm cone's `slope` was lost: `sweep
+        // -- natural 200 7508 random 7` #38, noisy, in a first version).
         let mut one = cell;
         (one.crest, one.foot) = (one.z, one.z);
         let reading = continuing(&one, None, (Some(0.4595), true), None);
