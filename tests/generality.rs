@@ -997,6 +997,59 @@ fn a_sharp_cone_whose_cells_read_its_apex_low_stops() {
 }
 
 #[test]
+fn a_sharp_cone_whose_far_side_lies_in_its_own_shadow_stops() {
+    // A Kinect v2 0.61 m high, pitched 35.9°, rolled −4.7° and yawed −8.3°, over lumpy
+    // ground with stones (`sweep -- natural 200 7334 random 7` #11, clean). A 15.4 cm
+    // cone with 44° flanks 2.2 m out in the right track, behind a 7.7 cm cap: its apex
+    // cell reads 12.1 cm, its highest point 14.2-14.7 cm, and the cells behind it lie
+    // in its shadow. The sharp-top test asked for a seen cell just past a top, and
+    // this one had none: the rise was measured from the means, under a wheel radius,
+    // a go. Ground hidden just past a top is lower than the top (anything as high
+    // would stand in the line of sight over it), so the top counts: a `step`. (With
+    // noise the flank already read as a `slope`.) 9 cm high, go.
+    let mut c = kinect_v2(mounted(
+        [0.275_355, -0.094_653, 0.613_351],
+        [-4.672_031, 35.888_337, -8.255_836],
+    ));
+    c.camera.min_range_m = 0.324_929;
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.100_160_347,
+                seed: 6_278_911_417_340_931_312,
+            },
+            Element::stone(
+                1.780_788,
+                -0.489_970,
+                0.107_193,
+                0.055_975,
+                StoneShape::Mound,
+            ),
+            Element::stone(1.987_496, -0.311_440, 0.136_023, 0.076_855, StoneShape::Cap),
+            Element::stone(
+                2.396_330,
+                -0.552_158,
+                0.079_236,
+                0.043_843,
+                StoneShape::Boulder,
+            ),
+            Element::stone(2.747_633, -0.293_563, 0.141_944, 0.083_414, StoneShape::Cap),
+            Element::stone(
+                1.363_222,
+                0.456_870,
+                0.056_891,
+                0.046_424,
+                StoneShape::Mound,
+            ),
+            Element::stone(2.196_870, -0.434_784, 0.159_992, height_m, StoneShape::Cone),
+        ]
+    };
+    let stop = (Decision::Stop, Side::Right, None);
+    go_low_not_tall(field, [0.09, 0.153_718], &c, 7_334_011, stop);
+}
+
+#[test]
 fn a_stone_s_flank_sloping_across_a_strip_is_not_carried_past_the_stone() {
     // A 320×240 camera 0.58 m high, rolled −3.6° and yawed 9.6°, over lumpy ground
     // with stones (`sweep -- natural 200 7322 random 7` #23, clean and noisy). A

@@ -189,8 +189,10 @@ fn sharp_top_steps(
 }
 
 /// Mark the sharp tops of strip `iy` (its seen cells, `strip`): where the strip reads
-/// a cell's one surface (crest and foot alike), higher than the cells just before and
-/// after it, than anything within a wheel radius past it, and at least as high as the
+/// a cell's one surface (crest and foot alike), higher than the cell just before it
+/// and than the cell just after it (or with that cell in its shadow: a 15.4 cm cone
+/// whose far side was hidden went, `sweep -- natural 200 7334 random 7` #11), than
+/// anything within a wheel radius past it, and at least as high as the
 /// seen cells beside it across, and whose mean lies more than rough ground's spread
 /// ([`ROUGH_SPREAD_M`]) under its top voxel's highest point ([`Cell::peak`]), that
 /// cell's `peak` becomes that point. Over a sharp apex (a cone, a narrow mound) the
@@ -215,10 +217,13 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
     let mut any = false;
     for k in 1..strip.len().saturating_sub(1) {
         let (before, here, after) = (strip[k - 1], strip[k], strip[k + 1]);
+        // The cell just past it in its shadow: hidden ground lower than the top (as
+        // high, it would stand in the line of sight over the top, and be seen).
+        let shadow = after.ix > here.ix + 1 && f.shadowed[s.cell(here.ix + 1, iy)];
         let along = before.z < here.z
-            && after.z <= here.z
+            && (after.z <= here.z || shadow)
             && before.ix + 1 == here.ix
-            && after.ix == here.ix + 1
+            && (after.ix == here.ix + 1 || shadow)
             && !(before.past || here.past || after.past);
         if !along {
             continue;
