@@ -152,7 +152,9 @@ pub struct Verdict {
     pub decision: Decision,
     /// The obstacle feature; `None` unless the decision is go.
     pub feature: Option<Feature>,
-    /// The hazards found, nearest first; the first decided a stop.
+    /// The hazards found, nearest first; in a stop, the hazards that stop the rover
+    /// come first and unknown ground after them (see [`Verdict::order_hazards`]).
+    /// The first decided the verdict.
     pub hazards: heapless::Vec<Hazard, MAX_HAZARDS>,
     /// Fraction of the corridor cells the camera should see that it did see, 0..=1.
     pub seen_fraction: f32,
@@ -257,6 +259,22 @@ impl Verdict {
         }
         // One per kind and side: 6 × 3 ≤ MAX_HAZARDS, so this cannot overflow.
         let _ = self.hazards.push(h);
+    }
+
+    /// Order the hazards nearest first, except that in a stop (`decision` set) the
+    /// hazards that stop the rover come before unknown ground: the first hazard is
+    /// the one that decided the verdict, as the wire form and `analyze` name it. A
+    /// belly rock whose top leaves the image is `unknown` where its top is cut and a
+    /// `belly` hazard where its seen part already passes the clearance, often in the
+    /// same cell; the order of the two was left to the sort.
+    pub fn order_hazards(&mut self) {
+        let stop = self.decision == Decision::Stop;
+        let after = |h: &Hazard| stop && h.kind == HazardKind::Unknown;
+        self.hazards.sort_unstable_by(|a, b| {
+            after(a)
+                .cmp(&after(b))
+                .then(a.distance_m.total_cmp(&b.distance_m))
+        });
     }
 
     /// The verdict as one JSON object (the `analyze` output line).

@@ -563,7 +563,8 @@ const FACE_MARGIN_SDS: f64 = 2.0;
 
 /// The decision from the hazards found: stop for any but unknown ground; unknown
 /// for unknown ground or too little seen (then an `unknown` hazard at the nearest
-/// unseen row); else go. Hazards end nearest first.
+/// unseen row); else go. Hazards end nearest first, in a stop the ones that stop
+/// the rover first ([`Verdict::order_hazards`]).
 fn decide(verdict: &mut Verdict, too_little: bool, nearest_unseen: f32) {
     let stop = verdict
         .hazards
@@ -580,9 +581,6 @@ fn decide(verdict: &mut Verdict, too_little: bool, nearest_unseen: f32) {
             },
         });
     }
-    verdict
-        .hazards
-        .sort_unstable_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
     verdict.decision = if stop {
         Decision::Stop
     } else if too_little || !verdict.hazards.is_empty() {
@@ -590,11 +588,44 @@ fn decide(verdict: &mut Verdict, too_little: bool, nearest_unseen: f32) {
     } else {
         Decision::Go
     };
+    verdict.order_hazards();
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_stop_names_first_the_hazard_that_stops_the_rover() {
+        // A belly rock whose top leaves the image: `unknown` where its top is cut, in
+        // the cell of the `belly` hazard its seen part makes or one nearer (`sweep --
+        // families 100 7806 random` #30, #74). The stop was named `unknown`.
+        let hazard = |kind, side, distance_m| Hazard {
+            kind,
+            side,
+            distance_m,
+        };
+        for unknown_at in [1.65, 1.7] {
+            let mut v = Verdict::default();
+            v.add_hazard(hazard(HazardKind::Unknown, Side::Centre, unknown_at));
+            v.add_hazard(hazard(HazardKind::Step, Side::Left, 2.5));
+            v.add_hazard(hazard(HazardKind::Belly, Side::Centre, 1.7));
+            decide(&mut v, false, f32::INFINITY);
+            assert_eq!(v.decision, Decision::Stop);
+            let kinds: Vec<_> = v.hazards.iter().map(|h| h.kind).collect();
+            assert_eq!(
+                kinds,
+                [HazardKind::Belly, HazardKind::Step, HazardKind::Unknown]
+            );
+        }
+        // Unknown ground alone: nearest first.
+        let mut v = Verdict::default();
+        v.add_hazard(hazard(HazardKind::Unknown, Side::Right, 2.0));
+        v.add_hazard(hazard(HazardKind::Unknown, Side::Left, 1.0));
+        decide(&mut v, false, f32::INFINITY);
+        assert_eq!(v.decision, Decision::Unknown);
+        assert_eq!(v.hazards[0].side, Side::Left);
+    }
 
     /// Flat ground in every cell the camera sees whole, and in `extra` cells out of
     /// its view (the blind zone, as the terrain memory would fill it).

@@ -279,7 +279,7 @@ fn verdict_lines(c: &mut Canvas, scene: &Scene<'_>, at: &mut Lines) {
     if v.hazards.is_empty() {
         at.line(c, "hazards: none");
     } else {
-        at.line(c, "hazards (nearest first):");
+        at.line(c, "hazards (the deciding one first):");
         for h in &v.hazards {
             at.line(
                 c,

@@ -607,10 +607,9 @@ fn side_index(s: Side) -> usize {
 }
 
 /// The decision again after hazards were added: stop for any but unknown ground,
-/// unknown for unknown ground; a go loses its feature. Hazards nearest first.
+/// unknown for unknown ground; a go loses its feature. Hazards nearest first, in a
+/// stop the ones that stop the rover first ([`Verdict::order_hazards`]).
 fn redecide(v: &mut Verdict) {
-    v.hazards
-        .sort_unstable_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
     let stop = v.hazards.iter().any(|h| h.kind != HazardKind::Unknown);
     let decision = if stop {
         Decision::Stop
@@ -623,6 +622,7 @@ fn redecide(v: &mut Verdict) {
         v.feature = None;
     }
     v.decision = decision;
+    v.order_hazards();
 }
 
 /// How far a cell's mean height may lie off the line through its two neighbours'
