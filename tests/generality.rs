@@ -1050,6 +1050,120 @@ fn a_sharp_cone_whose_far_side_lies_in_its_own_shadow_stops() {
 }
 
 #[test]
+fn a_sharp_cone_whose_foot_lies_below_the_image_is_unknown() {
+    // A 320×240 camera 0.63 m high, pitched 15°, over lumpy ground with stones
+    // (`sweep -- natural 200 7324 random 7` #167, clean and noisy). A 15.3 cm cone
+    // 1.13 m out in the right track, its foot below the image's bottom edge: the
+    // strips see it from part of its height. Its apex cell's mean reads 10.7 cm, under
+    // the wheel radius and 1 cm the blind-rise test allows rough ground's bumps, and
+    // it went; the apex cell's highest point, 13 cm, stands over it. How high the
+    // cone rises from is not seen: `unknown`. 9 cm high, go.
+    let c = qvga(
+        mounted(
+            [0.258_643, 0.008_847, 0.626_609],
+            [-1.456_817, 15.027_215, -0.510_784],
+        ),
+        0.353_191,
+    );
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.184_082_523,
+                seed: 7_575_328_391_925_232_305,
+            },
+            Element::stone(
+                1.992_703,
+                0.525_911,
+                0.165_507,
+                0.083_165,
+                StoneShape::Boulder,
+            ),
+            Element::stone(2.358_868, 0.432_083, 0.116_313, 0.060_890, StoneShape::Cap),
+            Element::stone(2.099_035, -0.356_646, 0.086_784, 0.071_265, StoneShape::Cap),
+            Element::stone(
+                1.583_870,
+                -0.356_416,
+                0.067_929,
+                0.042_850,
+                StoneShape::Boulder,
+            ),
+            Element::stone(
+                1.295_595,
+                -0.593_945,
+                0.163_965,
+                0.087_476,
+                StoneShape::Mound,
+            ),
+            Element::stone(1.132_344, -0.359_813, 0.151_279, height_m, StoneShape::Cone),
+        ]
+    };
+    let unknown = (Decision::Unknown, Side::Right, Some(HazardKind::Unknown));
+    go_low_not_tall(field, [0.09, 0.152_721], &c, 7_324_167, unknown);
+}
+
+#[test]
+fn a_step_the_face_analysis_finds_stops_the_rover_beside_unknown_ground() {
+    // A D435-like camera 0.68 m high, pitched 16.6°, over lumpy ground with stones
+    // (`sweep -- natural 200 7322 random 7` #11, clean and noisy). A 15.2 cm cone
+    // 0.97 m out in the left track, its foot below the image: the blind-rise test,
+    // reading its apex's highest point, calls the track's ground `unknown` at 0.88 m.
+    // The face analysis, which fits the cone as a step too high to climb (a `step`),
+    // ran on a go only, and the rover got `unknown` where a stop was found. 9 cm high,
+    // go.
+    let mut c = d435_like(
+        mounted(
+            [0.234_585, 0.012_487, 0.675_459],
+            [2.507_980, 16.592_715, 0.345_945],
+        ),
+        [433.533_017, 434.050_398, 421.915_220, 239.719_197],
+        0.322_426,
+    );
+    (c.camera.hfov_deg, c.camera.vfov_deg) = (88.726_162, 57.937_043);
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.152_384_611,
+                seed: 10_768_402_117_572_600_557,
+            },
+            Element::stone(
+                1.904_599,
+                -0.277_362,
+                0.094_164,
+                0.071_592,
+                StoneShape::Mound,
+            ),
+            Element::stone(2.364_946, 0.418_711, 0.099_758, 0.080_302, StoneShape::Cap),
+            Element::stone(
+                1.751_263,
+                0.585_426,
+                0.096_114,
+                0.062_527,
+                StoneShape::Boulder,
+            ),
+            Element::stone(
+                2.649_169,
+                0.301_790,
+                0.095_688,
+                0.049_083,
+                StoneShape::Mound,
+            ),
+            Element::stone(
+                1.183_978,
+                0.455_085,
+                0.133_764,
+                0.070_886,
+                StoneShape::Mound,
+            ),
+            Element::stone(0.971_768, 0.420_691, 0.153_267, height_m, StoneShape::Cone),
+        ]
+    };
+    let stop = (Decision::Stop, Side::Left, Some(HazardKind::Step));
+    go_low_not_tall(field, [0.09, 0.151_933], &c, 7_322_011, stop);
+}
+
+#[test]
 fn a_stone_s_flank_sloping_across_a_strip_is_not_carried_past_the_stone() {
     // A 320×240 camera 0.58 m high, rolled −3.6° and yawed 9.6°, over lumpy ground
     // with stones (`sweep -- natural 200 7322 random 7` #23, clean and noisy). A

@@ -331,9 +331,14 @@ impl Analyzer {
         };
         let too_little = seen_of_visible < frame.cfg.analysis.min_seen_fraction as f32;
         decide(verdict, too_little, nearest_unseen);
-        if verdict.decision == Decision::Go {
+        // The face analysis measures a go's obstacle; over a go or unknown ground it
+        // also finds a face too steep or a step too high, which stop the rover (a
+        // hazard that stops outranks unknown ground, as in `decide`).
+        if verdict.decision == Decision::Go
+            || (verdict.decision == Decision::Unknown && !too_little)
+        {
             let (measured, sd_deg, step_relief) = feature::analyse(&frame, &mut scratch.feature);
-            verdict.feature = Some(measured);
+            verdict.feature = (verdict.decision == Decision::Go).then_some(measured);
             let rover = &frame.cfg.rover;
             if too_steep_face(&measured, sd_deg, rover, verdict)
                 || too_high_step(&measured, step_relief, rover, verdict)
@@ -445,10 +450,11 @@ impl Analyzer {
     }
 }
 
-/// Whether a go's measured face (`measured`) is a plane steeper than the rover
-/// climbs (`rover.max_slope_deg`, degrees; a low step's ±90° is not a plane); if so,
-/// a `slope` hazard on each side its workcase names goes into `verdict`, where the
-/// toe line is nearest within that side's wheel track, metres.
+/// Whether the measured face (`measured`) of a go or of unknown ground is a plane
+/// steeper than the rover climbs (`rover.max_slope_deg`, degrees; a low step's ±90°
+/// is not a plane); if so, a `slope` hazard on each side its workcase names goes
+/// into `verdict`, where the toe line is nearest within that side's wheel track,
+/// metres.
 ///
 /// The crossing tests judge the cells strip by strip and found nothing; the face
 /// fitted through the same cells says otherwise where the view ends on a ramp's first
@@ -480,15 +486,16 @@ fn too_steep_face(
     true
 }
 
-/// Whether a go's measured face (`measured`) is a step (±90°) whose ground past its
-/// onsets stands more than a wheel radius and a margin for rough ground's bumps
-/// ([`crossing::UNSEEN_FOOT_MARGIN_M`]) off the ground before them (`step_relief`,
-/// metres, from `feature::analyse`): then it is no low step, and a `step` hazard on
-/// each side its workcase names goes into `verdict`, where the toe line is nearest
-/// within that side's wheel track, metres. Without the margin, an 8.7 cm mound on
-/// lumpy ground, 11.3 cm over the dip before it, fitted with a face along the track
-/// stopped the rover (`sweep -- natural 200 6824 random 6` #124; the step test's sharp
-/// tops stop it since: its apex stands 11.4-11.9 cm over that ground).
+/// Whether the measured face (`measured`) of a go or of unknown ground is a step
+/// (±90°) whose ground past its onsets stands more than a wheel radius and a margin
+/// for rough ground's bumps ([`crossing::UNSEEN_FOOT_MARGIN_M`]) off the ground
+/// before them (`step_relief`, metres, from `feature::analyse`): then it is no low
+/// step, and a `step` hazard on each side its workcase names goes into `verdict`,
+/// where the toe line is nearest within that side's wheel track, metres. Without the
+/// margin, an 8.7 cm mound on lumpy ground, 11.3 cm over the dip before it, fitted
+/// with a face along the track stopped the rover (`sweep -- natural 200 6824 random
+/// 6` #124; the step test's sharp tops stop it since: its apex stands 11.4-11.9 cm
+/// over that ground).
 ///
 /// The step test judges a strip's rise from the cells it sees; where the foot of what
 /// a strip climbs lies in a shadow (a 15 cm rock just behind an 8 cm one, the dip

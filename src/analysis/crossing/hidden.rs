@@ -216,6 +216,13 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 }
             }
             let from_ground = near().take(at).any(|(_, z)| z.abs() <= ROUGH_SPREAD_M);
+            // A sharp apex's cell reads its mean 2-4 cm under its highest point: there
+            // the highest point counts (a 15.3 cm cone whose foot lies below the
+            // image read 10.7 cm, its highest point 13 cm: `sweep -- natural 200 7324
+            // random 7` #167, a go).
+            if reach > 0.0 {
+                reach = sharp_apex(&f.cells[f.spec.cell(start + at, iy)], reach);
+            }
             // Or seen from a passable ramp's foot: its first cell within the rise
             // threshold of the rover's ground, and its first BLIND_FOOT_M on one line
             // whose toe is ahead (with and without that cell). What stands on the ramp
@@ -251,6 +258,19 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 distance_m: nearest.max(0.0),
             });
         }
+    }
+}
+
+/// The height of a cell whose followed surface is `z`: its top voxel's highest point
+/// ([`Cell::peak`]) where it reads one surface (crest and foot alike, `z`) whose mean
+/// lies more than rough ground's spread ([`ROUGH_SPREAD_M`]) under that point, a
+/// sharp apex (as the step test's sharp tops); else `z`, metres.
+fn sharp_apex(cell: &Cell, z: f32) -> f32 {
+    let one_surface = z == cell.crest && cell.crest == cell.foot;
+    if one_surface && cell.peak - z > ROUGH_SPREAD_M {
+        cell.peak
+    } else {
+        z
     }
 }
 
