@@ -5,7 +5,8 @@
 use super::faces::FACE_OFF_VOXELS;
 use super::gaps::from_rover_ground;
 use super::{
-    followed, line_fit, Frame, Region, ROUGH_LINE_RMS_M, ROUGH_SPREAD_M, UNSEEN_FOOT_MARGIN_M,
+    followed, line_fit, sharp_apex, Frame, Region, ROUGH_LINE_RMS_M, ROUGH_SPREAD_M,
+    UNSEEN_FOOT_MARGIN_M,
 };
 use crate::analysis::low_step;
 use crate::grid::Cell;
@@ -221,7 +222,8 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             // image read 10.7 cm, its highest point 13 cm: `sweep -- natural 200 7324
             // random 7` #167, a go).
             if reach > 0.0 {
-                reach = sharp_apex(&f.cells[f.spec.cell(start + at, iy)], reach);
+                let cell = &f.cells[f.spec.cell(start + at, iy)];
+                reach = sharp_apex(cell, reach).unwrap_or(reach);
             }
             // Or seen from a passable ramp's foot: its first cell within the rise
             // threshold of the rover's ground, and its first BLIND_FOOT_M on one line
@@ -258,19 +260,6 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 distance_m: nearest.max(0.0),
             });
         }
-    }
-}
-
-/// The height of a cell whose followed surface is `z`: its top voxel's highest point
-/// ([`Cell::peak`]) where it reads one surface (crest and foot alike, `z`) whose mean
-/// lies more than rough ground's spread ([`ROUGH_SPREAD_M`]) under that point, a
-/// sharp apex (as the step test's sharp tops); else `z`, metres.
-fn sharp_apex(cell: &Cell, z: f32) -> f32 {
-    let one_surface = z == cell.crest && cell.crest == cell.foot;
-    if one_surface && cell.peak - z > ROUGH_SPREAD_M {
-        cell.peak
-    } else {
-        z
     }
 }
 

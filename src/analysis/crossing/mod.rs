@@ -221,15 +221,16 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
         // high, it would stand in the line of sight over the top, and be seen).
         let shadow = after.ix > here.ix + 1 && f.shadowed[s.cell(here.ix + 1, iy)];
         let along = before.z < here.z
-            && (after.z <= here.z || shadow)
             && before.ix + 1 == here.ix
-            && (after.ix == here.ix + 1 || shadow)
+            && ((after.ix == here.ix + 1 && after.z <= here.z) || shadow)
             && !(before.past || here.past || after.past);
         if !along {
             continue;
         }
         let cell = &f.cells[s.cell(here.ix, iy)];
-        let one_surface = here.z == cell.crest && cell.crest == cell.foot;
+        let Some(peak) = sharp_apex(cell, here.z) else {
+            continue;
+        };
         let not_under = |j: usize| {
             let c = s.cell(here.ix, j);
             f.seen[c] && f.cells[c].crest <= cell.crest
@@ -247,22 +248,24 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
             .iter()
             .take_while(|c| c.x - here.x <= r)
             .all(|c| c.z <= here.z);
-        // Sharp: its mean lies more than rough ground's spread under its highest
-        // point. A rounded or flat top (a rock, a boulder, a bump) the mean reads
-        // well, and its highest point only adds depth noise.
-        let sharp = cell.peak - here.z > ROUGH_SPREAD_M;
-        if one_surface
-            && sharp
-            && top
-            && cell.peak - floor > r
-            && not_under(iy - 1)
-            && not_under(iy + 1)
-        {
-            strip[k].peak = cell.peak;
+        if top && peak - floor > r && not_under(iy - 1) && not_under(iy + 1) {
+            strip[k].peak = peak;
             any = true;
         }
     }
     any
+}
+
+/// A cell's top voxel's highest point ([`Cell::peak`]), metres, where the cell reads
+/// one surface (crest and foot alike, the followed height `z`) whose mean lies more
+/// than rough ground's spread ([`ROUGH_SPREAD_M`]) under it: a sharp apex (a cone, a
+/// narrow mound), whose cell's mean reads 2-4 cm low. A rounded or flat top (a rock,
+/// a boulder, a bump) the mean reads well, and its highest point only adds depth
+/// noise: `None`. The step test's sharp tops ([`sharp_tops`]) and the hidden-rise
+/// test ([`blind_rise`]) ask the same.
+fn sharp_apex(cell: &Cell, z: f32) -> Option<f32> {
+    let one_surface = z == cell.crest && cell.crest == cell.foot;
+    (one_surface && cell.peak - z > ROUGH_SPREAD_M).then_some(cell.peak)
 }
 
 /// The ground of seen cell (`ix`, `iy`) beside a face along its strip (a trench's
