@@ -32,6 +32,9 @@
 //! flat ground) are skipped, and the last line counts them. `ALL=1` also prints every
 //! frame's verdict (decision, hazards, feature, tilt, how far each band is seen):
 //! two builds' outputs, sorted, diff to exactly the frames whose verdict changed.
+//! `WANT=1` also prints each frame's expectation on a line of its own (`want #N
+//! noisy=...`), so that errors in distance and gradient can be tallied over frames
+//! that pass as well as those that fail.
 
 #[path = "../tests/common/second_renderer.rs"]
 mod second;
@@ -64,6 +67,8 @@ fn main() {
     let exact = std::env::var("EXACT").is_ok_and(|v| v == "1");
     // ALL=1: every frame's verdict, passed or not (see the module doc).
     let all = std::env::var("ALL").is_ok_and(|v| v == "1");
+    // WANT=1: also each frame's expectation, on a line of its own.
+    let want_too = std::env::var("WANT").is_ok_and(|v| v == "1");
     let mut not_drawn = 0;
     for i in 0..n {
         let (terrain, want, config, tol) = draw(&mut rng, mode, i, random_rig, family);
@@ -121,6 +126,9 @@ fn main() {
                     "#{i} noisy={noisy} {:?} hazards={:?} feature={:?} tilt={:?} seen_to={:?}",
                     v.decision, v.hazards, v.feature, v.tilt, v.seen_to_m
                 );
+            }
+            if want_too {
+                println!("want #{i} noisy={noisy} {want:?}");
             }
             total += 1;
             if v.decision == Decision::Go && want.verdict != Decision::Go {
