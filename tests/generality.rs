@@ -514,6 +514,63 @@ fn cells_between_a_coarse_cameras_rows_are_no_drop_off_but_a_drop_off_still_is()
 }
 
 #[test]
+fn bumps_hiding_a_rough_descent_s_far_end_make_no_drop_off_but_an_edge_there_does() {
+    // A D435-like camera 0.53 m high, pitched 22°, rolled −9.7° and yawed 9.3°, over a
+    // 13.8° descent from 1.05 m on rough ground (`sweep -- families 200 9001 random 5`
+    // #2, clean and noisy). The camera meets the descent's far end at 7-9°, and one
+    // strip of the right track lies unseen from 2.7 m to the corridor's end behind
+    // bumps 2-3 cm high. That strip's own cells lie on a line within 4 mm, and bumps
+    // that low cast no shadow that long: a `drop_off`. The ground around it, strips
+    // beside included, is rougher (6 mm about its plane), and its bumps hide that much.
+    let mut c = d435_like(
+        mounted(
+            [0.250_365, 0.082_811, 0.526_333],
+            [-9.688_303, 22.058_981, 9.326_304],
+        ),
+        [426.795_105, 425.875_032, 442.728_126, 236.477_431],
+        0.494_583,
+    );
+    (c.camera.hfov_deg, c.camera.vfov_deg) = (89.623_535, 58.700_771);
+    let descent = vec![
+        Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m: 0.121_813_108,
+            seed: 4_844_035_762_516_852_684,
+        },
+        Element::ramp(1.053_584, 0.0, -13.797_633, 0.0, Extent::Full),
+    ];
+    let views = analyse_views(descent.clone(), &c, [None, Some(9_001_002)]);
+    for v in &views {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        let f = v.feature.expect("a go has a feature");
+        assert_eq!(f.workcase, 8, "{f:?}");
+        assert!(
+            (f64::from(f.distance_m.unwrap()) - 1.053_584).abs() <= 0.04,
+            "{f:?}"
+        );
+        assert!(
+            (f64::from(f.gradient_deg.unwrap()) + 13.797_633).abs() <= 2.0,
+            "{f:?}"
+        );
+    }
+    // The ground ending there instead leaves every strip unseen from its edge on.
+    for edge in [2.45, 2.6, 2.8] {
+        let mut scene = descent.clone();
+        scene.push(Element::DropOff {
+            x_m: edge,
+            depth_m: 0.5,
+        });
+        for v in analyse_views(scene, &c, [None, Some(9_001_002)]) {
+            assert!(
+                v.hazards.iter().any(|h| h.kind == HazardKind::DropOff),
+                "edge at {edge}: {:?}",
+                v.hazards
+            );
+        }
+    }
+}
+
+#[test]
 fn a_belly_rock_rising_out_of_the_image_is_never_go() {
     // Camera 0.75 m high pitched 38°: the image's top edge passes 0.32 m over the
     // ground 1.45 m out, so a 0.44 m rock there is seen only up to the clearance.

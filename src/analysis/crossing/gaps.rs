@@ -504,10 +504,19 @@ const SPARSE_ROWS: f32 = 2.0;
 /// bump [`BUMP_RMS`] residuals high hides `h / tan(incidence)` behind it. Smooth
 /// ground (even noisy: a cell's mean height varies by millimetres) casts none worth a
 /// cell, so a drop-off's gap there stays a gap.
+///
+/// How rough the ground is, is the larger of the strip's own residuals about its line
+/// and the patch's about its plane ([`patch_roughness`]): a strip may run along a
+/// ridge or a furrow and show little of the roughness, while the line of sight, which
+/// crosses strips, meets the bumps beside it too. The far end of rough descents, met
+/// at 7-9°, lay 1-6 cells unseen behind bumps 2-3 cm high in strips whose own line
+/// showed 2-4 mm of roughness, and the rover stopped for a `drop_off` (`sweep --
+/// families 200 9001 random 5` #2, #39, `natural 200 9002 random 5` #139, #168).
 fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -> bool {
     let (Some((k, rms, _)), Some((xb, zb))) = (before.line(), before.last()) else {
         return false;
     };
+    let rms = rms.max(patch_roughness(f, iy, start));
     let s = f.spec;
     let c = f.camera;
     let (x, y) = (s.x_centre(start), s.y_centre(iy));
@@ -518,3 +527,37 @@ fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -
     let gap_m = (end - start) as f32 * s.voxel_m;
     incidence > 0.0 && gap_m * incidence.tan() <= BUMP_RMS * rms
 }
+
+/// The RMS of the seen cells' heights about their least-squares plane, metres, over
+/// the patch of ground before row `start` of strip `iy`: [`PATCH_ROWS`] rows back and
+/// [`ACROSS_STRIPS`] strips to either side, cells seen whole with one surface (a face's
+/// cell mixes two levels: a band's side would pass for roughness); 0 with fewer than
+/// [`PATCH_MIN_CELLS`].
+fn patch_roughness(f: &Frame, iy: usize, start: usize) -> f32 {
+    let s = f.spec;
+    let cells = || {
+        let rows = start.saturating_sub(PATCH_ROWS)..start;
+        let strips = iy.saturating_sub(ACROSS_STRIPS)..(iy + ACROSS_STRIPS + 1).min(s.ny);
+        rows.flat_map(move |ix| strips.clone().map(move |jy| s.cell(ix, jy)))
+            .filter(|&c| f.seen[c] && !f.past[c] && f.cells[c].crest == f.cells[c].foot)
+            .map(|c| &f.cells[c])
+    };
+    let mut fit = PlaneFit::default();
+    let mut n = 0usize;
+    for cell in cells() {
+        fit.add(f64::from(cell.x), f64::from(cell.y), f64::from(cell.z), 1.0);
+        n += 1;
+    }
+    let Some(plane) = fit.solve().filter(|_| n >= PATCH_MIN_CELLS) else {
+        return 0.0;
+    };
+    let off = |c: &Cell| f64::from(c.z) - plane.z(f64::from(c.x), f64::from(c.y));
+    let sum: f64 = cells().map(|c| off(c).powi(2)).sum();
+    (sum / n as f64).sqrt() as f32
+}
+
+/// Rows of ground before a gap that [`patch_roughness`] takes (0.4 m at the default
+/// voxel).
+const PATCH_ROWS: usize = 8;
+/// Fewest cells [`patch_roughness`] fits a plane to.
+const PATCH_MIN_CELLS: usize = 12;
