@@ -553,14 +553,18 @@ fn bumps_hiding_a_rough_descent_s_far_end_make_no_drop_off_but_an_edge_there_doe
             "{f:?}"
         );
     }
-    // The ground ending there instead leaves every strip unseen from its edge on.
-    for edge in [2.45, 2.6, 2.8] {
+    // The ground ending there instead leaves every strip unseen from its edge on, and
+    // no strip sees ground going on past the bumps' shadow: a drop-off, up to 0.1 m
+    // before the corridor's end in the clean frame (with noise, 0.2 m: the frames
+    // after see it).
+    for (edge, noisy) in [(2.45, true), (2.6, true), (2.8, true), (2.9, false)] {
         let mut scene = descent.clone();
         scene.push(Element::DropOff {
             x_m: edge,
             depth_m: 0.5,
         });
-        for v in analyse_views(scene, &c, [None, Some(9_001_002)]) {
+        let views = analyse_views(scene, &c, [None, Some(9_001_002)]);
+        for v in &views[..if noisy { 2 } else { 1 }] {
             assert!(
                 v.hazards.iter().any(|h| h.kind == HazardKind::DropOff),
                 "edge at {edge}: {:?}",

@@ -1,6 +1,8 @@
 //! Ground the camera should have seen and did not: gaps, drop-offs, and the shadows,
 //! grazing views and pixel rows that explain a missing cell.
 
+use std::ops::Range;
+
 use nalgebra::Vector3;
 
 use super::hidden::BLIND_FIT_M;
@@ -505,19 +507,26 @@ const SPARSE_ROWS: f32 = 2.0;
 /// ground (even noisy: a cell's mean height varies by millimetres) casts none worth a
 /// cell, so a drop-off's gap there stays a gap.
 ///
-/// How rough the ground is, is the larger of the strip's own residuals about its line
-/// and the patch's about its plane ([`patch_roughness`]): a strip may run along a
-/// ridge or a furrow and show little of the roughness, while the line of sight, which
-/// crosses strips, meets the bumps beside it too. The far end of rough descents, met
-/// at 7-9°, lay 1-6 cells unseen behind bumps 2-3 cm high in strips whose own line
-/// showed 2-4 mm of roughness, and the rover stopped for a `drop_off` (`sweep --
-/// families 200 9001 random 5` #2, #39, `natural 200 9002 random 5` #139, #168).
+/// Where the ground goes on past the run in some other strip ([`ground_goes_on`]), how
+/// rough it is, is the larger of the strip's own residuals about its line and the
+/// patch's about its plane ([`patch_roughness`]): a strip may run along a ridge or a
+/// furrow and show little of the roughness, while the line of sight, which crosses
+/// strips, meets the bumps beside it too. The far end of rough descents, met at 7-9°,
+/// lay 2-6 cells unseen behind bumps 2-3 cm high in strips whose own line showed 2-4
+/// mm of roughness, and the rover stopped for a `drop_off` (`sweep -- families 200
+/// 9001 random 5` #2, #39, `natural 200 9002 random 5` #139, #168). Read so without
+/// the ground going on, a 0.5 m drop 0.2 m before the corridor's end on #39's and
+/// #168's rigs went.
 fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -> bool {
-    let (Some((k, rms, _)), Some((xb, zb))) = (before.line(), before.last()) else {
+    let (Some((k, rms, zl)), Some((xb, zb))) = (before.line(), before.last()) else {
         return false;
     };
-    let rms = rms.max(patch_roughness(f, iy, start));
     let s = f.spec;
+    let rms = if ground_goes_on(f, iy, start..end, (k, zl, xb)) {
+        rms.max(patch_roughness(f, iy, start))
+    } else {
+        rms
+    };
     let c = f.camera;
     let (x, y) = (s.x_centre(start), s.y_centre(iy));
     let (dx, dy) = (x - c[0], y - c[1]);
@@ -526,6 +535,24 @@ fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -
     let incidence = depression + (k * dx / d).atan();
     let gap_m = (end - start) as f32 * s.voxel_m;
     incidence > 0.0 && gap_m * incidence.tan() <= BUMP_RMS * rms
+}
+
+/// Whether some other strip of the corridor sees ground in the last two rows of the
+/// unseen run `rows` of strip `iy` (up to the corridor's end), within a wheel radius of
+/// the line `(k, z, x)` (slope, height at `x`, metres) through the ground before the
+/// run: the ground goes on past the run. An edge across the corridor leaves no strip
+/// seeing its own ground from the edge on, nor the lower ground beyond it, within the
+/// corridor.
+fn ground_goes_on(f: &Frame, iy: usize, rows: Range<usize>, (k, z, x): (f32, f32, f32)) -> bool {
+    let s = f.spec;
+    let r = f.cfg.rover.wheel_radius_m as f32;
+    let far = rows.end.saturating_sub(2).max(rows.start)..rows.end.min(s.nx);
+    (0..s.ny).filter(|&jy| jy != iy).any(|jy| {
+        far.clone().any(|jx| {
+            let (c, cell) = (s.cell(jx, jy), &f.cells[s.cell(jx, jy)]);
+            f.seen[c] && !f.past[c] && (cell.z - (z + k * (cell.x - x))).abs() <= r
+        })
+    })
 }
 
 /// The RMS of the seen cells' heights about their least-squares plane, metres, over
