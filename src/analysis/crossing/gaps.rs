@@ -523,7 +523,7 @@ fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -
     };
     let s = f.spec;
     let rms = if ground_goes_on(f, iy, start..end, (k, zl, xb)) {
-        rms.max(patch_roughness(f, iy, start))
+        rms.max(patch_roughness(f, iy, start).min(ROUGH_BUMP_MAX_M / BUMP_RMS))
     } else {
         rms
     };
@@ -560,14 +560,18 @@ fn ground_goes_on(f: &Frame, iy: usize, rows: Range<usize>, (k, z, x): (f32, f32
 
 /// The RMS of the seen cells' heights about their least-squares plane, metres, over
 /// the patch of ground before row `start` of strip `iy`: [`PATCH_ROWS`] rows back and
-/// [`ACROSS_STRIPS`] strips to either side, cells seen whole with one surface (a face's
-/// cell mixes two levels: a band's side would pass for roughness); 0 with fewer than
-/// [`PATCH_MIN_CELLS`].
+/// [`ACROSS_STRIPS`] strips to either side within the strip's band (track or belly),
+/// cells seen whole with one surface (a face's cell mixes two levels: a band's side
+/// would pass for roughness); 0 with fewer than [`PATCH_MIN_CELLS`]. Across the band's
+/// edge, a trench's floor and the belly band's ground beside it made a patch 20 cm
+/// rough, and a 1 m deep hole in the floor, seen past the trench's shadow, was taken
+/// for a bump's shadow (`belly_ground_spilled_into_a_tracks_edge_strip_ends_no_gap`).
 fn patch_roughness(f: &Frame, iy: usize, start: usize) -> f32 {
     let s = f.spec;
     let cells = || {
         let rows = start.saturating_sub(PATCH_ROWS)..start;
-        let strips = iy.saturating_sub(ACROSS_STRIPS)..(iy + ACROSS_STRIPS + 1).min(s.ny);
+        let strips = (iy.saturating_sub(ACROSS_STRIPS)..(iy + ACROSS_STRIPS + 1).min(s.ny))
+            .filter(move |&jy| f.region[jy] == f.region[iy]);
         rows.flat_map(move |ix| strips.clone().map(move |jy| s.cell(ix, jy)))
             .filter(|&c| f.seen[c] && !f.past[c] && f.cells[c].crest == f.cells[c].foot)
             .map(|c| &f.cells[c])
@@ -585,6 +589,11 @@ fn patch_roughness(f: &Frame, iy: usize, start: usize) -> f32 {
     let sum: f64 = cells().map(|c| off(c).powi(2)).sum();
     (sum / n as f64).sqrt() as f32
 }
+
+/// The tallest bump rough ground's patch may stand for in [`bump_shadow`], metres: its
+/// crest to trough at ±2.5 cm. A patch holding two levels (a trench's floor beside the
+/// belly band's ground) is no rough ground, however large its RMS.
+const ROUGH_BUMP_MAX_M: f32 = 0.05;
 
 /// Rows of ground before a gap that [`patch_roughness`] takes (0.4 m at the default
 /// voxel).
