@@ -1,12 +1,10 @@
 //! Ground the camera should have seen and did not: gaps, drop-offs, and the shadows,
 //! grazing views and pixel rows that explain a missing cell.
 
-use std::ops::Range;
-
 use nalgebra::Vector3;
 
 use super::hidden::BLIND_FIT_M;
-use super::{line_fit, Frame, Region, ROUGH_LINE_RMS_M};
+use super::{line_fit, plane_fit, Frame, Region, ROUGH_LINE_RMS_M};
 use crate::analysis::plane::PlaneFit;
 use crate::analysis::visibility;
 use crate::grid::Cell;
@@ -522,7 +520,7 @@ fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -
         return false;
     };
     let s = f.spec;
-    let rms = if ground_goes_on(f, iy, start..end, (k, zl, xb)) {
+    let rms = if ground_goes_on(f, iy, end - 1, (k, zl, xb)) {
         rms.max(patch_roughness(f, iy, start).min(ROUGH_BUMP_MAX_M / BUMP_RMS))
     } else {
         rms
@@ -537,8 +535,8 @@ fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -
     incidence > 0.0 && gap_m * incidence.tan() <= BUMP_RMS * rms
 }
 
-/// Whether some other strip of the corridor sees ground in the last row of the unseen
-/// run `rows` of strip `iy` (the corridor's last, for a run up to its end), within a
+/// Whether some other strip of the corridor sees ground in row `last`, the last of an
+/// unseen run of strip `iy` (the corridor's last, for a run up to its end), within a
 /// wheel radius of the line `(k, z, x)` (slope, height at `x`, metres) through the
 /// ground before the run: the ground goes on past the run. An edge across the corridor
 /// leaves no strip seeing its own ground from the edge on, nor the lower ground beyond
@@ -546,15 +544,13 @@ fn bump_shadow(f: &Frame, iy: usize, start: usize, end: usize, before: Recent) -
 /// the last one counted, and 0.5 m drops 2.91-2.93 m out on rough descents went that
 /// the code before stopped (4 of 160 drawn 2.6-2.95 m out on 80 descents of `sweep --
 /// families 200 9001 random 5`).
-fn ground_goes_on(f: &Frame, iy: usize, rows: Range<usize>, (k, z, x): (f32, f32, f32)) -> bool {
+fn ground_goes_on(f: &Frame, iy: usize, last: usize, (k, z, x): (f32, f32, f32)) -> bool {
     let s = f.spec;
     let r = f.cfg.rover.wheel_radius_m as f32;
-    let far = rows.end.saturating_sub(1).max(rows.start)..rows.end.min(s.nx);
     (0..s.ny).filter(|&jy| jy != iy).any(|jy| {
-        far.clone().any(|jx| {
-            let (c, cell) = (s.cell(jx, jy), &f.cells[s.cell(jx, jy)]);
-            f.seen[c] && !f.past[c] && (cell.z - (z + k * (cell.x - x))).abs() <= r
-        })
+        let c = s.cell(last, jy);
+        let cell = &f.cells[c];
+        f.seen[c] && !f.past[c] && (cell.z - (z + k * (cell.x - x))).abs() <= r
     })
 }
 
@@ -568,26 +564,17 @@ fn ground_goes_on(f: &Frame, iy: usize, rows: Range<usize>, (k, z, x): (f32, f32
 /// for a bump's shadow (`belly_ground_spilled_into_a_tracks_edge_strip_ends_no_gap`).
 fn patch_roughness(f: &Frame, iy: usize, start: usize) -> f32 {
     let s = f.spec;
-    let cells = || {
-        let rows = start.saturating_sub(PATCH_ROWS)..start;
-        let strips = (iy.saturating_sub(ACROSS_STRIPS)..(iy + ACROSS_STRIPS + 1).min(s.ny))
-            .filter(move |&jy| f.region[jy] == f.region[iy]);
-        rows.flat_map(move |ix| strips.clone().map(move |jy| s.cell(ix, jy)))
-            .filter(|&c| f.seen[c] && !f.past[c] && f.cells[c].crest == f.cells[c].foot)
-            .map(|c| &f.cells[c])
-    };
-    let mut fit = PlaneFit::default();
-    let mut n = 0usize;
-    for cell in cells() {
-        fit.add(f64::from(cell.x), f64::from(cell.y), f64::from(cell.z), 1.0);
-        n += 1;
+    let rows = start.saturating_sub(PATCH_ROWS)..start;
+    let strips = (iy.saturating_sub(ACROSS_STRIPS)..(iy + ACROSS_STRIPS + 1).min(s.ny))
+        .filter(|&jy| f.region[jy] == f.region[iy]);
+    let cells = rows
+        .flat_map(|ix| strips.clone().map(move |jy| s.cell(ix, jy)))
+        .filter(|&c| f.seen[c] && !f.past[c] && f.cells[c].crest == f.cells[c].foot)
+        .map(|c| (f.cells[c].x, f.cells[c].y, f.cells[c].z));
+    match plane_fit(cells) {
+        Some((_, rms, n)) if n >= PATCH_MIN_CELLS => rms as f32,
+        _ => 0.0,
     }
-    let Some(plane) = fit.solve().filter(|_| n >= PATCH_MIN_CELLS) else {
-        return 0.0;
-    };
-    let off = |c: &Cell| f64::from(c.z) - plane.z(f64::from(c.x), f64::from(c.y));
-    let sum: f64 = cells().map(|c| off(c).powi(2)).sum();
-    (sum / n as f64).sqrt() as f32
 }
 
 /// The tallest bump rough ground's patch may stand for in [`bump_shadow`], metres: its

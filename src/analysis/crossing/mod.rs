@@ -453,18 +453,23 @@ const ROUGH_LINE_RMS_M: f32 = 0.016;
 /// The least-squares line z = a·x + c through `points` (x, z), and the RMS of their
 /// heights about it, metres; `None` without two distinct x.
 fn line_fit(points: impl Iterator<Item = (f32, f32)> + Clone) -> Option<(Plane, f64)> {
+    plane_fit(points.map(|(x, z)| (x, 0.0, z))).map(|(p, rms, _)| (p, rms))
+}
+
+/// The least-squares plane z = a·x + b·y + c through `points` (x, y, z), the RMS of
+/// their heights about it (metres) and how many they are; `None` for a degenerate fit
+/// (no two distinct x, or, with y varying, all on one line).
+fn plane_fit(points: impl Iterator<Item = (f32, f32, f32)> + Clone) -> Option<(Plane, f64, usize)> {
     let mut fit = PlaneFit::default();
-    for (x, z) in points.clone() {
-        fit.add(f64::from(x), 0.0, f64::from(z), 1.0);
+    for (x, y, z) in points.clone() {
+        fit.add(f64::from(x), f64::from(y), f64::from(z), 1.0);
     }
     let p = fit.solve()?;
-    let (ss, n) = points.fold((0.0, 0.0), |(ss, n), (x, z)| {
-        (
-            ss + (f64::from(z) - p.z(f64::from(x), 0.0)).powi(2),
-            n + 1.0,
-        )
+    let (ss, n) = points.fold((0.0, 0usize), |(ss, n), (x, y, z)| {
+        let off = f64::from(z) - p.z(f64::from(x), f64::from(y));
+        (ss + off.powi(2), n + 1)
     });
-    Some((p, (ss / n).sqrt()))
+    Some((p, (ss / n as f64).sqrt(), n))
 }
 
 #[cfg(test)]
