@@ -95,7 +95,8 @@ impl Feature {
     };
 }
 
-/// How far each band of the corridor is seen before the sensor's horizon (where the
+/// How far each band of the corridor is seen (to the far edge of its last seen cell,
+/// the nearest over its strips) before the sensor's horizon (where the
 /// surface leaves the image, or the flat-ground view ends), metres forward.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct SeenTo {

@@ -230,33 +230,42 @@ impl Analyzer {
         })
     }
 
-    /// How far each band is seen: per strip, the near edge of the first expected
-    /// cell past the horizon, or the far edge of its last expected cell; the nearest
-    /// over the band's strips.
+    /// How far each band is seen: per strip, the far edge of its last seen cell
+    /// before the horizon (the first expected cell past it), or the near edge of its
+    /// first expected cell when it sees none; the nearest over the band's strips.
+    ///
+    /// Unseen cells at a strip's far end, however the gap test explains them (bump
+    /// shadows, grazing incidence, rows too sparse), are not seen: a 0.45 m drop
+    /// 2.86 m out on rough descents met at grazing incidence, which no strip saw past
+    /// 2.85 m, went with the corridor reported seen to 3.0 m (`sweep -- families 200
+    /// 9001 random 5` #57, #106, #119, dumped and a drop added).
     fn seen_to(&self) -> SeenTo {
         let (fx, v) = (&self.fixed, &self.view);
         let s = &fx.spec;
         let mut out = [f32::INFINITY; 3];
         for iy in 0..s.ny {
+            let mut first = None;
             let mut last = None;
-            let mut to = None;
             for ix in 0..s.nx {
                 let c = s.cell(ix, iy);
                 if !fx.expected[c] {
                     continue;
                 }
+                first.get_or_insert(s.x_centre(ix) - 0.5 * s.voxel_m);
                 if v.past[c] {
-                    to = Some(s.x_centre(ix) - 0.5 * s.voxel_m);
                     break;
                 }
-                last = Some(s.x_centre(ix) + 0.5 * s.voxel_m);
+                if v.seen[c] {
+                    last = Some(s.x_centre(ix) + 0.5 * s.voxel_m);
+                }
             }
+            let to = last.or(first);
             let k = match fx.region[iy] {
                 Region::Left => 0,
                 Region::Belly => 1,
                 Region::Right => 2,
             };
-            if let Some(x) = to.or(last) {
+            if let Some(x) = to {
                 out[k] = out[k].min(x);
             }
         }
