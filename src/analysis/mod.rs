@@ -719,6 +719,46 @@ mod tests {
     }
 
     #[test]
+    fn seen_to_ends_at_each_band_s_last_seen_cell() {
+        // Flat ground seen to the corridor's end; the last two cells of one left
+        // strip unseen (whatever would explain them) end the left band's view there;
+        // nothing seen ends every band where its view starts.
+        let config = Config::default();
+        let spec = GridSpec::from_config(&config);
+        let projector = Projector::new(&config, 640, 480);
+        let mut a = Analyzer::new(&config, spec, &projector).unwrap();
+        let expected = a.fixed.expected.clone();
+        let cut = vec![false; spec.cell_count()];
+        let seen_to = |a: &mut Analyzer, cells: &[Cell]| {
+            let mut v = Verdict::default();
+            a.analyze(cells, None, &cut, &mut v);
+            v.seen_to_m
+        };
+        let mut cells = flat(&spec, &expected, 0);
+        let end = config.analysis.corridor_length_m as f32;
+        let all = seen_to(&mut a, &cells);
+        for to in [all.left, all.centre, all.right] {
+            assert!((to - end).abs() < 1e-4, "{all:?}");
+        }
+        let iy = (0..spec.ny)
+            .find(|&iy| a.fixed.region[iy] == Region::Left)
+            .unwrap();
+        for ix in spec.nx - 2..spec.nx {
+            cells[spec.cell(ix, iy)] = Cell::EMPTY;
+        }
+        let short = seen_to(&mut a, &cells);
+        assert!(
+            (short.left - (end - 2.0 * spec.voxel_m)).abs() < 1e-4,
+            "{short:?}"
+        );
+        assert_eq!((short.centre, short.right), (all.centre, all.right));
+        let none = seen_to(&mut a, &vec![Cell::EMPTY; spec.cell_count()]);
+        for to in [none.left, none.centre, none.right] {
+            assert!(to > 0.0 && to < 1.0, "{none:?}");
+        }
+    }
+
+    #[test]
     fn remembered_cells_count_in_the_seen_fraction_by_their_confidence() {
         let config = Config::default();
         let spec = GridSpec::from_config(&config);
