@@ -262,6 +262,18 @@ impl Verdict {
         let _ = self.hazards.push(h);
     }
 
+    /// What the hazards alone decide: stop for any but unknown ground, unknown for
+    /// unknown ground alone, `None` with no hazard (the analysis then decides).
+    pub fn hazards_decision(&self) -> Option<Decision> {
+        if self.hazards.iter().any(|h| h.kind != HazardKind::Unknown) {
+            Some(Decision::Stop)
+        } else if !self.hazards.is_empty() {
+            Some(Decision::Unknown)
+        } else {
+            None
+        }
+    }
+
     /// Order the hazards nearest first, except that in a stop (`decision` set) the
     /// hazards that stop the rover come before unknown ground: the first hazard is
     /// the one that decided the verdict, as the wire form and `analyze` name it. A

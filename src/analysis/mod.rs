@@ -582,10 +582,6 @@ const FACE_MARGIN_SDS: f64 = 2.0;
 /// unseen row); else go. Hazards end nearest first, in a stop the ones that stop
 /// the rover first ([`Verdict::order_hazards`]).
 fn decide(verdict: &mut Verdict, too_little: bool, nearest_unseen: f32) {
-    let stop = verdict
-        .hazards
-        .iter()
-        .any(|h| h.kind != HazardKind::Unknown);
     if too_little {
         verdict.add_hazard(Hazard {
             kind: HazardKind::Unknown,
@@ -597,13 +593,7 @@ fn decide(verdict: &mut Verdict, too_little: bool, nearest_unseen: f32) {
             },
         });
     }
-    verdict.decision = if stop {
-        Decision::Stop
-    } else if too_little || !verdict.hazards.is_empty() {
-        Decision::Unknown
-    } else {
-        Decision::Go
-    };
+    verdict.decision = verdict.hazards_decision().unwrap_or(Decision::Go);
     verdict.order_hazards();
 }
 

@@ -610,14 +610,7 @@ fn side_index(s: Side) -> usize {
 /// unknown for unknown ground; a go loses its feature. Hazards nearest first, in a
 /// stop the ones that stop the rover first ([`Verdict::order_hazards`]).
 fn redecide(v: &mut Verdict) {
-    let stop = v.hazards.iter().any(|h| h.kind != HazardKind::Unknown);
-    let decision = if stop {
-        Decision::Stop
-    } else if !v.hazards.is_empty() {
-        Decision::Unknown
-    } else {
-        v.decision
-    };
+    let decision = v.hazards_decision().unwrap_or(v.decision);
     if decision != Decision::Go {
         v.feature = None;
     }
