@@ -708,15 +708,21 @@ mod tests {
         }
     }
 
+    /// The default config, its grid and an analyzer for a 640×480 camera.
+    fn default_analyzer() -> (Config, GridSpec, Analyzer) {
+        let config = Config::default();
+        let spec = GridSpec::from_config(&config);
+        let projector = Projector::new(&config, 640, 480);
+        let a = Analyzer::new(&config, spec, &projector).unwrap();
+        (config, spec, a)
+    }
+
     #[test]
     fn seen_to_ends_at_each_band_s_last_seen_cell() {
         // Flat ground seen to the corridor's end; the last two cells of one left
         // strip unseen (whatever would explain them) end the left band's view there;
         // nothing seen ends every band where its view starts.
-        let config = Config::default();
-        let spec = GridSpec::from_config(&config);
-        let projector = Projector::new(&config, 640, 480);
-        let mut a = Analyzer::new(&config, spec, &projector).unwrap();
+        let (config, spec, mut a) = default_analyzer();
         let expected = a.fixed.expected.clone();
         let cut = vec![false; spec.cell_count()];
         let seen_to = |a: &mut Analyzer, cells: &[Cell]| {
@@ -750,10 +756,7 @@ mod tests {
 
     #[test]
     fn remembered_cells_count_in_the_seen_fraction_by_their_confidence() {
-        let config = Config::default();
-        let spec = GridSpec::from_config(&config);
-        let projector = Projector::new(&config, 640, 480);
-        let mut a = Analyzer::new(&config, spec, &projector).unwrap();
+        let (_, spec, mut a) = default_analyzer();
         let expected = a.expected().to_vec();
         let e = expected.iter().filter(|&&x| x).count() as f32;
         let cut = vec![false; spec.cell_count()];
