@@ -1112,6 +1112,43 @@ fn a_sharp_cone_whose_cells_read_its_apex_low_stops() {
 }
 
 #[test]
+fn a_sharp_cone_whose_flank_rises_longer_than_a_step_to_its_apex_stops() {
+    // A D435-like camera 1.13 m high, rolled −6.3°, pitched 29.6° and yawed −3.8°, over
+    // lumpy ground with stones (`sweep -- natural 200 7508 random 7` #45, clean). A
+    // 15.6 cm cone with 38° flanks 1.8 m out in the left track: the strips beside its
+    // apex read its flank rising 11-12 cm at under 26° from the ground before it, and
+    // its apex cell's highest point 14.8-14.9 cm, 12.7 cm over the wheel at the
+    // flank's foot 0.2 m before it: a rise steeper than 30°, but too long for a step,
+    // and the sharp-top test measured steps alone (a go). It is now a `slope`. 9 cm
+    // high, go.
+    let c = d435_like(
+        mounted([0.2892, 0.0493, 1.1296], [-6.2642, 29.5822, -3.7556]),
+        [432.522, 433.160, 440.749, 239.183],
+        0.3790,
+    );
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.133_633_818,
+                seed: 1_469_758_263_644_250_657,
+            },
+            Element::stone(2.0847, 0.6214, 0.1028, 0.0807, StoneShape::Cap),
+            Element::stone(2.3938, -0.5751, 0.1461, 0.0882, StoneShape::Boulder),
+            Element::stone(1.3568, -0.5521, 0.1119, 0.0561, StoneShape::Cap),
+            Element::stone(1.8027, 0.3543, 0.1986, height_m, StoneShape::Cone),
+        ]
+    };
+    go_low_not_tall(
+        field,
+        [0.09, 0.156],
+        &c,
+        7_508_045,
+        (Decision::Stop, Side::Left, None),
+    );
+}
+
+#[test]
 fn a_sharp_cone_whose_far_side_lies_in_its_own_shadow_stops() {
     // A Kinect v2 0.61 m high, pitched 35.9°, rolled −4.7° and yawed −8.3°, over lumpy
     // ground with stones (`sweep -- natural 200 7334 random 7` #11, clean). A 15.4 cm

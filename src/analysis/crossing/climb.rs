@@ -54,10 +54,10 @@ fn on_rim(z: f32, dx: f32, r: f32) -> Option<f32> {
 }
 
 /// Steps and slopes along one strip's seen cells (see
-/// [`steps_and_slopes`](super::steps_and_slopes)); with `rises_only`, only steps that
-/// rise to a sharp top (the test of sharp tops: each cell's `z` is then its highest
-/// point where that is a sharp top, and `peak` the height the first pass read).
-/// Returns whether it found any.
+/// [`steps_and_slopes`](super::steps_and_slopes)); with `rises_only`, only rises from
+/// cells before a sharp top (the test of sharp tops: each cell's `z` is then its
+/// highest point where that is a sharp top, and `peak` the height the first pass
+/// read), steps and slopes alike. Returns whether it found any.
 pub(super) fn strip_hazards(
     strip: &[StripCell],
     region: Region,
@@ -70,27 +70,21 @@ pub(super) fn strip_hazards(
     // and lowest wheels: such a cell is skipped without looking at its pairs.
     let (low, high) = wheel_span(strip);
     let all_finite = strip.iter().all(|c| c.wheel.is_finite());
-    // Rises only: steps, which rise within their reach, to a sharp top (a cell whose
-    // `z` and `peak` differ) or a cell whose wheel it holds up.
-    let reach = if rises_only {
-        STEP_REACH_VOXELS * vs
-    } else {
-        f32::INFINITY
-    };
     for (i, a) in strip.iter().enumerate() {
         let (xi, zi) = (a.x, a.wheel);
         if all_finite && high - zi <= r && zi - low <= r {
             continue;
         }
-        let mut near = strip[i + 1..].iter().take_while(|c| c.x - xi <= reach + r);
-        if rises_only && !near.any(|c| c.z != c.peak) {
+        // Rises only: from a cell before a sharp top (one whose `z` and `peak`
+        // differ). The first pass found nothing, so only a rise whose wheels the
+        // sharp top lifted can be one now.
+        if rises_only && !strip[i + 1..].iter().any(|c| c.z != c.peak) {
             continue;
         }
         // How much of a rise from this cell is rough ground's: the same for every
         // cell ahead, so measured once, when a rise first needs it.
         let mut rough_rise = None;
-        let ahead = strip.iter().enumerate().skip(i + 1);
-        for (j, b) in ahead.take_while(|(_, b)| b.x - xi <= reach) {
+        for (j, b) in strip.iter().enumerate().skip(i + 1) {
             let (xj, zj) = (b.x, b.wheel);
             let (dx, dz) = (xj - xi, zj - zi);
             if dz.abs() <= r || (rises_only && dz < 0.0) {
@@ -122,15 +116,13 @@ pub(super) fn strip_hazards(
                         Some(_) => Some((HazardKind::Slope, xi)),
                         None => Some((HazardKind::Step, 0.5 * (xi + xj))),
                     }
-                } else if !rises_only
-                    && sustained(&strip[i..=j])
+                } else if sustained(&strip[i..=j])
                     && climb_slope(strip, i, j, (wheelbase, r, min_gap)) >= tan_max
                 {
                     Some((HazardKind::Slope, xi))
                 } else {
                     None // flat, then a jump: a step, found from nearer cells
                 };
-                let kind = kind.filter(|(k, _)| !rises_only || *k == HazardKind::Step);
                 let Some((kind, at)) = kind else { break };
                 verdict.add_hazard(Hazard {
                     kind,
@@ -683,5 +675,71 @@ mod tests {
         s[1].ix += 2;
         wheel_heights(&mut s, r);
         assert_eq!(s[0].wheel, 0.0);
+    }
+
+    /// A track strip 2.9 cm beside a 15.6 cm cone's apex (38° flanks) on lumpy ground,
+    /// as the sharp-top pass reads it: cell means (x, z) from 1.32 m, the apex cell's
+    /// highest point 14.9 cm (its mean 12.6 cm), then the cone's shadow (`sweep --
+    /// natural 200 7508 random 7` #45, clean, 848×480 camera 1.13 m high), every
+    /// height scaled by `k`, with the sharp top at its highest point when `sharp`.
+    fn beside_a_cone(k: f32, sharp: bool) -> Vec<StripCell> {
+        let cells: [(f32, f32); 15] = [
+            (1.324, 0.015),
+            (1.373, 0.011),
+            (1.425, -0.001),
+            (1.477, -0.006),
+            (1.526, 0.002),
+            (1.574, 0.012),
+            (1.625, 0.027),
+            (1.674, 0.051),
+            (1.726, 0.077),
+            (1.774, 0.114),
+            (1.814, 0.126),
+            (2.039, 0.004),
+            (2.075, -0.004),
+            (2.128, -0.012),
+            (2.176, -0.006),
+        ];
+        let mut run: Vec<StripCell> = cells
+            .iter()
+            .map(|&(x, z)| StripCell {
+                x,
+                z: k * z,
+                ix: (x / VS) as usize,
+                past: false,
+                peak: k * z,
+                wheel: k * z,
+            })
+            .collect();
+        if sharp {
+            (run[10].z, run[10].peak) = (k * 0.149, k * 0.126);
+        }
+        wheel_heights(&mut run, 0.11);
+        run
+    }
+
+    #[test]
+    fn a_sharp_top_over_a_wheel_radius_up_a_flank_steeper_than_the_limit_stops() {
+        let limits = (0.11, 30f32.to_radians().tan(), 0.6, 2);
+        let found = |run: &[StripCell], rises_only: bool| {
+            let mut v = Verdict::default();
+            strip_hazards(run, Region::Left, limits, (VS, rises_only), &mut v);
+            v.hazards.to_vec()
+        };
+        // Read from its means, no rise of more than a wheel radius up the cone's flank
+        // is steeper than 25°.
+        assert!(found(&beside_a_cone(1.0, false), false).is_empty());
+        // At its apex's highest point, the wheel over the top stands 12.7 cm over the
+        // wheel at the flank's foot, 0.2 m before it: more than a wheel radius at 32°,
+        // too long a rise for a step (0.175 m) but a slope the rover cannot climb. The
+        // sharp-top pass measured steps alone, and this 15.6 cm cone was a go.
+        let h = found(&beside_a_cone(1.0, true), true);
+        assert_eq!(h.len(), 1, "{h:?}");
+        assert_eq!(h[0].kind, HazardKind::Slope);
+        assert!((h[0].distance_m - 1.574).abs() < 0.06, "{h:?}");
+        // A 10.9 cm stone of that shape (its highest point 10.4 cm over the ground
+        // before it) is climbed, read either way.
+        assert!(found(&beside_a_cone(0.7, true), true).is_empty());
+        assert!(found(&beside_a_cone(0.7, false), false).is_empty());
     }
 }

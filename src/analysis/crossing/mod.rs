@@ -48,13 +48,17 @@ pub use hidden::{blind_rise, hidden_tops, steep_exit};
 /// rise out of it proves nothing and is not a hazard: the surface simply left the
 /// view (a ramp rising out of the image, seen past its horizon only by its side face).
 ///
-/// A strip where this finds nothing is tested once more, for rising steps only, with
-/// its sharp tops ([`sharp_tops`]) at their highest points: a 16.5 cm cone with 47°
-/// flanks, seen whole 1 m out, read 10.3 cm over the ground before it (its apex cell's
-/// mean 2.5 cm under its highest point) and was a go (`sweep -- natural 200 6822
-/// random 7` #52). An 8.7 cm mound on a 2 cm bump whose apex stands 11.4-11.9 cm over
-/// the flat ground before it stops too (`sweep -- natural 200 6824 random 6` #124):
-/// the wheel meets both as a rise of more than its radius.
+/// A strip where this finds nothing is tested once more, for rises only (steps and
+/// slopes), with its sharp tops ([`sharp_tops`]) at their highest points: a 16.5 cm
+/// cone with 47° flanks, seen whole 1 m out, read 10.3 cm over the ground before it
+/// (its apex cell's mean 2.5 cm under its highest point) and was a go (`sweep --
+/// natural 200 6822 random 7` #52). An 8.7 cm mound on a 2 cm bump whose apex stands
+/// 11.4-11.9 cm over the flat ground before it stops too (`sweep -- natural 200 6824
+/// random 6` #124): the wheel meets both as a rise of more than its radius. A rise to
+/// a sharp top longer than a step's reach is judged as any slope: a 15.6 cm cone
+/// with 38° flanks, read by a strip 2.9 cm beside its apex, climbs 12.7 cm to its
+/// apex cell's highest point at 32° over 0.2 m, and was a go while this pass
+/// measured steps alone (`sweep -- natural 200 7508 random 7` #45, #77).
 ///
 /// `surface` receives, per track cell, the height the strip followed there (NaN for
 /// cells it did not follow: unseen, past the horizon, or not in a track).
