@@ -1149,6 +1149,41 @@ fn a_sharp_cone_whose_flank_rises_longer_than_a_step_to_its_apex_stops() {
 }
 
 #[test]
+fn a_cone_whose_foot_lies_below_the_image_and_whose_far_side_falls_back_is_no_ramp() {
+    // A 320×240 camera 0.62 m high, rolled 8.3°, pitched 17.5° and yawed 2.6°, over
+    // lumpy ground with stones (`sweep -- natural 200 7820 random 7` #159, clean and
+    // noisy). A 15.2 cm cone with 43° flanks 1.09 m out in the left track, its foot
+    // below the image: the two strips beside its apex see it from 5.7-6.1 cm up,
+    // rising to 11.4-11.7 cm (highest points 13.5-13.9 cm), then its shadow, then
+    // ground at the rover's level again. One of them, its last cell falling past the
+    // apex, fits a 22° line whose toe lies 0.15 m before the view: taken for a ramp
+    // with its toe below the image, it left one strip of unseen change, under the two
+    // that make an `unknown`, and the rover went. A ramp goes on rising behind what
+    // hides it; this ground is back at the cone's foot. 9 cm high, go.
+    let c = qvga(
+        mounted([0.1715, 0.0, 0.6192], [8.3069, 17.4756, 2.6156]),
+        0.3777,
+    );
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.189_456_001,
+                seed: 17_823_590_858_156_014_571,
+            },
+            Element::stone(2.1994, 0.4803, 0.0699, 0.0463, StoneShape::Cap),
+            Element::stone(1.6409, 0.2746, 0.0704, 0.0431, StoneShape::Mound),
+            Element::stone(1.7607, 0.6110, 0.1157, 0.0810, StoneShape::Cap),
+            Element::stone(2.7011, -0.5395, 0.0771, 0.0564, StoneShape::Cap),
+            Element::stone(1.7747, -0.2973, 0.1077, 0.0608, StoneShape::Mound),
+            Element::stone(1.0918, 0.4989, 0.1635, height_m, StoneShape::Cone),
+        ]
+    };
+    let unknown = (Decision::Unknown, Side::Left, Some(HazardKind::Unknown));
+    go_low_not_tall(field, [0.09, 0.1523], &c, 7_820_159, unknown);
+}
+
+#[test]
 fn a_sharp_cone_whose_far_side_lies_in_its_own_shadow_stops() {
     // A Kinect v2 0.61 m high, pitched 35.9°, rolled −4.7° and yawed −8.3°, over lumpy
     // ground with stones (`sweep -- natural 200 7334 random 7` #11, clean). A 15.4 cm

@@ -154,7 +154,12 @@ fn ground_beyond(f: &Frame, surface: &[f32], iy: usize, from: usize) -> Option<f
 /// without its first cell (which the image's bottom edge cuts: a step's top seen with
 /// the upper part of its face fits a gentle line back to the rover), it is a ramp with
 /// its toe below the image (the paper's Table 2 case 3, measured by the feature
-/// analysis).
+/// analysis). Not when a shadow cuts that stretch short and the ground the strip sees
+/// again past it ([`ground_beyond`]) lies more than a wheel radius and
+/// [`UNSEEN_FOOT_MARGIN_M`] under what the stretch rose to: a ramp goes on rising
+/// behind what hides it, and that ground is back at the foot of what stood there (a
+/// 15.2 cm cone whose foot lay below the image fitted a 22° line through the cell
+/// past its apex, and went: `sweep -- natural 200 7820 random 7` #159).
 /// So is a strip seen from a passable ramp's foot: its first cell within
 /// `rise_threshold_m` of z = 0, and its first [`BLIND_FOOT_M`] on one line meeting
 /// z = 0 ahead in the same way (with and without that cell). What stands on the ramp
@@ -247,7 +252,19 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             {
                 continue;
             }
-            let ramp = fit(BLIND_FIT_M, 0).is_some_and(toe_ahead) && rest.is_none_or(toe_ahead);
+            // A ramp goes on rising behind what hides it: ground seen again past a
+            // shadow that cuts the stretch short, more than a wheel radius and rough
+            // ground's margin under what the stretch rose to, is back at the foot of
+            // what stood there, whatever line its front fits.
+            let seen = near().count();
+            let back_down = reach > 0.0
+                && start + seen < f.spec.nx
+                && ground(start + seen).is_none()
+                && ground_beyond(f, surface, iy, start + seen)
+                    .is_some_and(|z| z < reach - r - UNSEEN_FOOT_MARGIN_M);
+            let ramp = !back_down
+                && fit(BLIND_FIT_M, 0).is_some_and(toe_ahead)
+                && rest.is_none_or(toe_ahead);
             if !ramp {
                 hidden += 1;
                 nearest = nearest.min(x0);
