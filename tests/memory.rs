@@ -691,6 +691,34 @@ fn a_noisy_drive_fused_has_quieter_cells_and_smaller_errors_within_the_noisy_bar
     }
 }
 
+/// `n` frames of `terrain` from a camera driving straight ahead from `back` metres
+/// behind the rover origin, 0.1 m a frame, each with the motion it was reached by (the
+/// first with none).
+fn straight_drive<'a>(
+    terrain: &'a Terrain,
+    config: &'a Config,
+    back: f64,
+    n: usize,
+) -> impl Iterator<Item = (DepthFrame, Result<Motion, Untrusted>)> + 'a {
+    let step = Motion {
+        forward_m: 0.1,
+        dt_s: 0.1,
+        ..Motion::default()
+    };
+    (0..n).map(move |k| {
+        let pose = Pose {
+            x: -back + 0.1 * k as f64,
+            ..Pose::default()
+        };
+        let motion = if k == 0 {
+            Err(Untrusted::NoOdometry)
+        } else {
+            Ok(step)
+        };
+        (sim::render_from(terrain, config, pose), motion)
+    })
+}
+
 #[test]
 fn a_boulder_the_image_s_side_edge_cuts_off_near_the_rover_is_remembered() {
     // A camera yawed 9.7° to the right (Kinect v1 0.98 m high, pitched 40°) does not
@@ -713,22 +741,7 @@ fn a_boulder_the_image_s_side_edge_cuts_off_near_the_rover_is_remembered() {
         sim::StoneShape::Mound,
     )]);
     let mut fused = Pipeline::new(config.clone()).unwrap();
-    let step = Motion {
-        forward_m: 0.1,
-        dt_s: 0.1,
-        ..Motion::default()
-    };
-    for k in 0..7 {
-        let pose = Pose {
-            x: -0.6 + 0.1 * k as f64,
-            ..Pose::default()
-        };
-        let frame = sim::render_from(&boulder, &config, pose);
-        let motion = if k == 0 {
-            Err(Untrusted::NoOdometry)
-        } else {
-            Ok(step)
-        };
+    for (k, (frame, motion)) in straight_drive(&boulder, &config, 0.6, 7).enumerate() {
         let v = fused.process_moved(&frame, motion).unwrap().clone();
         assert_ne!(v.decision, Decision::Go, "frame {k}");
         assert!(
@@ -782,23 +795,8 @@ fn a_cone_many_frames_found_is_not_lost_to_the_few_that_read_it_low() {
         Pipeline::new(config.clone()).unwrap(),
         Pipeline::new(config.clone()).unwrap(),
     );
-    let step = Motion {
-        forward_m: 0.1,
-        dt_s: 0.1,
-        ..Motion::default()
-    };
     let (mut found_by, mut single_goes) = (0, 0);
-    for k in 0..=20 {
-        let pose = Pose {
-            x: -1.2 + 0.1 * k as f64,
-            ..Pose::default()
-        };
-        let frame = sim::render_from(&field, &config, pose);
-        let motion = if k == 0 {
-            Err(Untrusted::NoOdometry)
-        } else {
-            Ok(step)
-        };
+    for (k, (frame, motion)) in straight_drive(&field, &config, 1.2, 21).enumerate() {
         let v = fused.process_moved(&frame, motion).unwrap().clone();
         let single = alone.process(&frame).unwrap().decision;
         if found_by >= 2 {
