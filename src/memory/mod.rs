@@ -154,11 +154,11 @@ const CARRY_FRAMES: u16 = 4;
 
 /// Most verdicts in a row that may miss a carried hazard in view before it is dropped
 /// (however many reported it): a second at 30 frames a second. A stop a parked rover
-/// holds against its own view of the place ends within that. A 16 cm cone 1.3-2.7 m
-/// out, reported as a `step` by 14 frames of a drive, read under a wheel radius in
-/// the next five from 1.2 m to 0.8 m (`sweep -- natural 100 9202 random` #95 driven
-/// up to from 1.5 m back in 0.1 m steps): kept, the drive stops in every frame from
-/// the first that found it.
+/// holds against its own view of the place ends within that. A 16.1 cm cone found a
+/// `step` by eleven frames of a drive up to it (its foot 2.5 m to 1.5 m out) was read
+/// low by the next seven (its apex 1.6 m to 1.0 m out), and the drive went there
+/// (`sweep -- natural 100 9202 random` #95, driven up to from 1.2 m back in 0.1 m
+/// steps); kept, the drive stops in every frame.
 const MISSED_MAX_FRAMES: u16 = 30;
 
 /// Heights of one cell in two frames within this of each other count as the same
@@ -412,8 +412,7 @@ impl TerrainMemory {
     /// reported is dropped only once as many verdicts in a row as reported it (up to
     /// 30, `MISSED_MAX_FRAMES`) see its place and do not: until then it is reported where
     /// the motion carried it. A hazard one frame reported is gone the next that misses
-    /// it.
-    /// Returns how many hazards came from memory.
+    /// it. Returns how many hazards came from memory.
     pub fn carry_hazards(&mut self, verdict: &mut Verdict) -> u32 {
         let mut added = 0u32;
         for h in &self.hazards {
