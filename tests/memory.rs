@@ -764,8 +764,8 @@ fn a_cone_many_frames_found_is_not_lost_to_the_few_that_read_it_low() {
     // natural 100 9202 random` #95): a 16.1 cm cone with 39° flanks in the left track,
     // driven up to, its apex from 2.7 m out to 0.7 m, in 0.1 m steps. Alone, the first
     // eleven frames find it a `step` at its foot (2.5 m to 1.5 m out); the next seven,
-    // its apex 1.6 m to 1.0 m out, read the apex low (the flank then climbs under the
-    // slope limit) and go, and so did the drive: the memory's hazards in view were the
+    // its apex 1.6 m to 1.0 m out, read its flank climbing under the slope limit (the
+    // apex stands 12.7 cm over the ground before it: lumpy ground dips under it) and go, and so did the drive: the memory's hazards in view were the
     // frame's alone. One that many frames found is now dropped only once as many miss
     // it (up to a second's frames), and the drive stops in every frame.
     let mut config = Config::default();

@@ -156,7 +156,8 @@ const CARRY_FRAMES: u16 = 4;
 /// (however many reported it): a second at 30 frames a second. A stop a parked rover
 /// holds against its own view of the place ends within that. A 16.1 cm cone found a
 /// `step` by eleven frames of a drive up to it (its foot 2.5 m to 1.5 m out) was read
-/// low by the next seven (its apex 1.6 m to 1.0 m out), and the drive went there
+/// climbable by the next seven (its apex 1.6 m to 1.0 m out, 12.7 cm over the ground
+/// before it: lumpy ground dips under it), and the drive went there
 /// (`sweep -- natural 100 9202 random` #95, driven up to from 1.2 m back in 0.1 m
 /// steps); kept, the drive stops in every frame.
 const MISSED_MAX_FRAMES: u16 = 30;
