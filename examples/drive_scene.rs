@@ -11,10 +11,9 @@
 //!
 //! The second command's verdicts are fused by the terrain memory from the second frame
 //! on: how a scene that one frame judges looks to a rover driving up to it.
-use rover_terrain::sim::drive::write_recording;
-use rover_terrain::sim::{render_from, Element, Pose, Terrain};
+use rover_terrain::sim::drive::{render_drive_from, write_recording, Step};
+use rover_terrain::sim::{Element, Pose, Terrain};
 use rover_terrain::Config;
-use rover_terrain_proto::Odometry;
 
 /// Frames a second the drive's timestamps and odometry times are spaced by.
 const RATE_HZ: f64 = 10.0;
@@ -41,21 +40,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let terrain = Terrain::new(elements);
     let n = ((back + past) / step).round() as usize;
-    let drive: Vec<_> = (0..=n)
-        .map(|k| {
-            let pose = Pose {
-                x: -back + k as f64 * step,
-                ..Pose::default()
-            };
-            let time_ms = (k as f64 * 1000.0 / RATE_HZ).round() as u64;
-            let odometry = Odometry::from_pose(k as u8, time_ms, k as f64 * step, 0.0, 0.0);
-            let mut frame = render_from(&terrain, &config, pose);
-            frame.seq = k as u64;
-            frame.timestamp_s = k as f64 / RATE_HZ;
-            frame.odometry = Some(odometry.encode());
-            (frame, pose, odometry)
-        })
-        .collect();
+    let start = Pose {
+        x: -back,
+        ..Pose::default()
+    };
+    let straight = Step {
+        forward_m: step,
+        turn_rad: 0.0,
+    };
+    let drive = render_drive_from(&terrain, &config, start, &vec![straight; n], 1.0, RATE_HZ);
     write_recording(std::path::Path::new(&args[4]), &drive)?;
     Ok(())
 }

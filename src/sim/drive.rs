@@ -32,7 +32,28 @@ pub fn render_drive(
     odometry_scale: f64,
     rate_hz: f64,
 ) -> Vec<(DepthFrame, Pose, Odometry)> {
-    let mut pose = Pose::default();
+    render_drive_from(
+        terrain,
+        config,
+        Pose::default(),
+        steps,
+        odometry_scale,
+        rate_hz,
+    )
+}
+
+/// [`render_drive`] starting at `start` (terrain coordinates) instead of the origin:
+/// e.g. behind a scene, to drive up to it. The odometry counts from the start, its
+/// heading relative to the start's.
+pub fn render_drive_from(
+    terrain: &Terrain,
+    config: &Config,
+    start: Pose,
+    steps: &[Step],
+    odometry_scale: f64,
+    rate_hz: f64,
+) -> Vec<(DepthFrame, Pose, Odometry)> {
+    let mut pose = start;
     let mut claimed = 0.0;
     let mut out = Vec::with_capacity(steps.len() + 1);
     for k in 0..=steps.len() {
@@ -44,7 +65,8 @@ pub fn render_drive(
             claimed += s.forward_m * odometry_scale;
         }
         let time_ms = (k as f64 * 1000.0 / rate_hz).round() as u64;
-        let odometry = Odometry::from_pose(k as u8, time_ms, claimed, 0.0, pose.heading);
+        let heading = pose.heading - start.heading;
+        let odometry = Odometry::from_pose(k as u8, time_ms, claimed, 0.0, heading);
         let mut frame = render_from(terrain, config, pose);
         frame.seq = k as u64;
         frame.timestamp_s = k as f64 / rate_hz;
