@@ -70,15 +70,17 @@ pub(super) fn strip_hazards(
     // and lowest wheels: such a cell is skipped without looking at its pairs.
     let (low, high) = wheel_span(strip);
     let all_finite = strip.iter().all(|c| c.wheel.is_finite());
-    for (i, a) in strip.iter().enumerate() {
+    // Rises only: from a cell before the last sharp top (one whose `z` and `peak`
+    // differ). The first pass found nothing, so only a rise whose wheels a sharp top
+    // lifted can be one now.
+    let before = if rises_only {
+        strip.iter().rposition(|c| c.z != c.peak).unwrap_or(0)
+    } else {
+        strip.len()
+    };
+    for (i, a) in strip.iter().enumerate().take(before) {
         let (xi, zi) = (a.x, a.wheel);
         if all_finite && high - zi <= r && zi - low <= r {
-            continue;
-        }
-        // Rises only: from a cell before a sharp top (one whose `z` and `peak`
-        // differ). The first pass found nothing, so only a rise whose wheels the
-        // sharp top lifted can be one now.
-        if rises_only && !strip[i + 1..].iter().any(|c| c.z != c.peak) {
             continue;
         }
         // How much of a rise from this cell is rough ground's: the same for every
