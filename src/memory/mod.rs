@@ -417,8 +417,7 @@ impl TerrainMemory {
     pub fn carry_hazards(&mut self, verdict: &mut Verdict) -> u32 {
         let mut added = 0u32;
         for h in &self.hazards {
-            let out_of_view = h.at[0] < self.view_start[side_index(h.side)];
-            if out_of_view && h.frames >= self.min_frames {
+            if self.out_of_view(h.at[0], h.side) && h.frames >= self.min_frames {
                 verdict.add_hazard(Hazard {
                     kind: h.kind,
                     side: h.side,
@@ -446,7 +445,7 @@ impl TerrainMemory {
             let prev = prev.map(|(_, c)| c);
             let carried = match prev {
                 // Out of view: the carried one itself, where the motion put it.
-                Some(p) if h.distance_m < self.view_start[k] => *p,
+                Some(p) if self.out_of_view(h.distance_m, h.side) => *p,
                 // In view again: where it was carried to, averaged with where the
                 // frame finds it (a frame's distance is quantised by the grid; the
                 // carried one is the mean of the last frames', moved exactly).
@@ -491,6 +490,12 @@ impl TerrainMemory {
         added + kept
     }
 
+    /// Whether a hazard `x` metres out on `side` is out of the camera's view now:
+    /// nearer than that side's nearest wholly seen cell.
+    fn out_of_view(&self, x: f32, side: Side) -> bool {
+        x < self.view_start[side_index(side)]
+    }
+
     /// The carried hazards of `old` that no verdict hazard matched (`found`, a bit per
     /// index) while in view, kept and reported where the motion carried them when
     /// `min_frames` verdicts in a row reported them and fewer in a row (up to
@@ -498,10 +503,9 @@ impl TerrainMemory {
     fn keep_missed(&mut self, old: &[CarriedHazard], found: u32, verdict: &mut Verdict) -> u32 {
         let mut kept = 0u32;
         for (i, p) in old.iter().enumerate() {
-            let in_view = p.at[0] >= self.view_start[side_index(p.side)];
             let missed = p.missed.saturating_add(1);
             if found & (1 << i) != 0
-                || !in_view
+                || self.out_of_view(p.at[0], p.side)
                 || p.frames < self.min_frames
                 || missed >= p.frames.min(MISSED_MAX_FRAMES)
             {
