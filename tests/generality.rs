@@ -3444,3 +3444,33 @@ fn the_impassable_versions_with_sloping_sides_are_never_go() {
         }
     }
 }
+
+#[test]
+fn a_cone_whose_flank_climbs_into_the_image_s_side_edge_is_unknown() {
+    // A Kinect v1 0.83 m high, rolled 8.3°, pitched 17.6° and yawed 6.4° left, over
+    // lumpy ground with stones (`sweep -- natural 200 7334 random 7` #130, clean and
+    // noisy). Its image's right edge crosses the right track 1.2 m out, where an 18.8
+    // cm cone stands with its apex beside the image: the strips see only its inner
+    // flank, climbing 12.1 cm over 0.2 m across the track toward the edge (lumpy
+    // ground dips 1 cm at its foot). What lies beside the image is not a gap, and
+    // along each strip the climb starts at the image's edge (no foot seen), so the
+    // rover went. A rise of more than a wheel radius steeper than the limit, whose top
+    // the camera does not see: `unknown`. 9 cm high (a 25° flank), go.
+    let mut c = mounted([0.0136, 0.0782, 0.8330], [8.2724, 17.6146, 6.4467]);
+    c.camera.min_range_m = 0.3274;
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.133_335_608,
+                seed: 6_067_819_546_458_486_397,
+            },
+            Element::stone(2.3197, -0.5389, 0.0903, 0.0728, StoneShape::Cap),
+            Element::stone(1.6228, 0.3357, 0.0767, 0.0435, StoneShape::Mound),
+            Element::stone(1.4795, -0.4598, 0.0628, 0.0461, StoneShape::Cap),
+            Element::stone(1.2425, -0.5365, 0.1938, height_m, StoneShape::Cone),
+        ]
+    };
+    let unknown = (Decision::Unknown, Side::Right, Some(HazardKind::Unknown));
+    go_low_not_tall(field, [0.09, 0.1881], &c, 7_334_130, unknown);
+}

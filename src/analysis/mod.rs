@@ -329,6 +329,7 @@ impl Analyzer {
         crossing::belly(&frame, &mut scratch.values, &mut scratch.track_ref, verdict);
         crossing::gaps(&frame, &scratch.surface, verdict);
         crossing::steep_exit(&frame, &scratch.surface, verdict);
+        crossing::side_exit(&frame, &scratch.surface, verdict);
         let t1 = Instant::now();
         verdict.timing_us.crossing = (t1 - t0).as_secs_f32() * 1e6;
 

@@ -7,6 +7,7 @@ mod climb;
 mod faces;
 mod gaps;
 mod hidden;
+mod side;
 
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region, StripCell};
@@ -22,6 +23,7 @@ use faces::{
 pub(crate) use faces::{ground_beside_face, unresolved_face_along};
 pub use gaps::{gaps, GRAZING_DEG};
 pub use hidden::{blind_rise, hidden_tops, steep_exit};
+pub use side::side_exit;
 
 /// Steps and slopes in the wheel tracks.
 ///
