@@ -3474,3 +3474,32 @@ fn a_cone_whose_flank_climbs_into_the_image_s_side_edge_is_unknown() {
     let unknown = (Decision::Unknown, Side::Right, Some(HazardKind::Unknown));
     go_low_not_tall(field, [0.09, 0.1881], &c, 7_334_130, unknown);
 }
+
+#[test]
+fn a_ramp_under_each_track_seen_by_a_rolled_coarse_camera_is_measured_to_the_view_s_end() {
+    // A 320×240 camera 0.93 m high, rolled 8.7°, pitched 24.6° and yawed −7.1°, over a
+    // 21.9° ramp under the right track from 1.30 m and another under the left from 1.75
+    // m, each with vertical sides (`sweep -- natural 100 9902 random` #86, clean and
+    // noisy). 2.5 m out, the right track's inner strip holds the ramp's top beside its
+    // side face; the camera's last row across one cell runs aslant, so the top voxel
+    // lay 1.8 cm off the strip's centre line, and 2.4 cm forward, at the cell's far
+    // end. Read as a slope across the strip, the strip took the cells' means, 5-10 cm
+    // under the ramp's top, for seven cells, then climbed back: a `slope` at 2.62 m and
+    // a `step` at 2.75 m. A ramp rising along the strip has its highest points forward.
+    // Which row crosses that cell aslant hangs on the mount to the micrometre: with it
+    // rounded to 0.1 mm the code before went too, so the sweep's values are kept.
+    let c = qvga(
+        mounted(
+            [0.112_848_202, -0.058_832_379, 0.933_373_655],
+            [8.650_636_610, 24.646_744_159, -7.063_742_832],
+        ),
+        0.324_667_217,
+    );
+    let ramps = vec![
+        Element::ramp(1.301_788_752, -0.45, 21.865_700_676, 0.0, RIGHT_TRACK),
+        Element::ramp(1.751_993_690, 0.45, 21.832_160_497, 0.0, LEFT_TRACK),
+    ];
+    for v in analyse_views(ramps, &c, [None, Some(9_902_086)]) {
+        assert_noisy_go(&v, 5, 1.3018, 21.8657);
+    }
+}

@@ -155,10 +155,13 @@ fn hugs_one_side(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> bool {
 /// of the points' mean, apart more sideways than forward (a face across the strip
 /// parts them forward) by at least [`SIDE_MIN_VOXELS`]; or, when only one band holds
 /// a surface, its top voxel lies to one side, by half [`FACE_OFF_VOXELS`] off both the
-/// points' mean and the strip's centre line (a surface sloping across has its highest
-/// points on its high side; a ramp's top spread across the cell has its top voxel on
-/// the centre line, however far a side face's points on the cell's edge pull the mean:
-/// `sweep -- natural 100 7102 random` #9). The cell's
+/// points' mean and the strip's centre line, and farther sideways of the points' mean
+/// than forward (a surface sloping across has its highest points on its high side; a
+/// ramp's top spread across the cell has its top voxel on the centre line, however far
+/// a side face's points on the cell's edge pull the mean: `sweep -- natural 100 7102
+/// random` #9; a ramp rising along the strip has it at the cell's far end, off the
+/// line only by where a rolled camera's last row crosses the cell: `natural 100 9902
+/// random` #86, 2.4 cm forward and 1.8 cm aside). The cell's
 /// mean height is then the ground's on the strip's centre line (exact for a plane).
 pub(super) fn slopes_across(cell: &Cell, y_mid: f32, vs: f32) -> bool {
     let span = cell.top - cell.low;
@@ -170,7 +173,8 @@ pub(super) fn slopes_across(cell: &Cell, y_mid: f32, vs: f32) -> bool {
     }
     if cell.crest == cell.foot {
         let off = |y: f32| (cell.top_xy[1] - y).abs() >= TOP_OFF_VOXELS * vs;
-        return off(cell.y) && off(y_mid);
+        let aside = (cell.top_xy[1] - cell.y).abs() > (cell.top_xy[0] - cell.x).abs();
+        return off(cell.y) && off(y_mid) && aside;
     }
     let (dx, dy) = (
         cell.crest_xy[0] - cell.foot_xy[0],
@@ -312,6 +316,33 @@ mod tests {
             ..edge
         };
         assert!(slopes_across(&sloped, -0.225, VS));
+        // Its top voxel off the centre line, but farther forward than sideways: a ramp
+        // rising along the strip, whose highest points lie at the cell's far end, seen
+        // by a rolled camera whose last row across the cell runs aslant (`sweep --
+        // natural 100 9902 random` #86, the right track's inner strip, 2.525 m out, to
+        // the millimetre). Read as a slope across, the strip took the mean, 5 cm under
+        // the ramp, kept to the means for seven cells and climbed back: a `slope`.
+        let aslant = Cell {
+            n: 33,
+            x: 2.525,
+            y: -0.219,
+            z: 0.435,
+            top: 0.500,
+            peak: 0.501,
+            top_xy: [2.549, -0.237],
+            low: 0.330,
+            crest: 0.489,
+            foot: 0.489,
+            crest_xy: [2.524, -0.224],
+            foot_xy: [2.524, -0.224],
+        };
+        assert!(!slopes_across(&aslant, -0.225, VS));
+        // The same top voxel at the cell's middle in x: sideways only, a slope across.
+        let across = Cell {
+            top_xy: [2.530, -0.237],
+            ..aslant
+        };
+        assert!(slopes_across(&across, -0.225, VS));
         // The points' mean off the middle: a face hugging the cell's side.
         let mut hug = c;
         hug.y = MID + 0.01;
