@@ -3479,8 +3479,8 @@ fn a_cone_whose_flank_climbs_into_the_image_s_side_edge_is_unknown() {
 fn a_ramp_under_each_track_seen_by_a_rolled_coarse_camera_is_measured_to_the_view_s_end() {
     // A 320×240 camera 0.93 m high, rolled 8.7°, pitched 24.6° and yawed −7.1°, over a
     // 21.9° ramp under the right track from 1.30 m and another under the left from 1.75
-    // m, each with vertical sides (`sweep -- natural 100 9902 random` #86, clean and
-    // noisy). 2.5 m out, the right track's inner strip holds the ramp's top beside its
+    // m, each with vertical sides (`sweep -- natural 100 9902 random` #86, clean; its
+    // noisy frame went). 2.5 m out, the right track's inner strip holds the ramp's top beside its
     // side face; the camera's last row across one cell runs aslant, so the top voxel
     // lay 1.8 cm off the strip's centre line, and 2.4 cm forward, at the cell's far
     // end. Read as a slope across the strip, the strip took the cells' means, 5-10 cm
