@@ -3503,3 +3503,19 @@ fn a_ramp_under_each_track_seen_by_a_rolled_coarse_camera_is_measured_to_the_vie
         assert_noisy_go(&v, 5, 1.3018, 21.8657);
     }
 }
+
+#[test]
+fn a_diagonal_one_track_ramp_rising_toward_the_image_s_side_edge_is_measured() {
+    // A Kinect v1 0.8 m high, pitched 30° and yawed 10° right: its image's left edge
+    // crosses the left track 0.9-1.5 m out. A 25° ramp under that track, its toe line at
+    // 26° to the rover, rises across the track toward that edge, 1 cm a strip (11°):
+    // 4 cm over the four strips the test of rises into the image's side edge
+    // (`side_exit`) looks back over, no stone's flank a wheel radius high. Go,
+    // measured, clean and noisy.
+    let mut c = mounted([0.0, 0.0, 0.8], [0.0, 30.0, -10.0]);
+    c.camera.min_range_m = 0.3274;
+    let ramp = vec![Element::ramp(0.9, 0.45, 25.0, 26.0, LEFT_TRACK)];
+    let [clean, noisy] = analyse_views(ramp, &c, [None, Some(7)]);
+    assert_go(&clean, 4, 0.9, 25.0, Some(26.0));
+    assert_noisy_go(&noisy, 4, 0.9, 25.0);
+}
