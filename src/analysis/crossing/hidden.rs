@@ -5,8 +5,8 @@
 use super::faces::FACE_OFF_VOXELS;
 use super::gaps::from_rover_ground;
 use super::{
-    followed, line_fit, sharp_apex, Frame, Region, ROUGH_LINE_RMS_M, ROUGH_SPREAD_M,
-    UNSEEN_FOOT_MARGIN_M,
+    followed, line_fit, sharp_apex, unknown_judged, Frame, Region, ROUGH_LINE_RMS_M,
+    ROUGH_SPREAD_M, UNSEEN_FOOT_MARGIN_M,
 };
 use crate::analysis::low_step;
 use crate::grid::Cell;
@@ -426,8 +426,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         };
         // Judged against the other tests' hazards only: a band beside this one
         // showing the same wall does not hide it.
-        let judged =
-            (verdict.hazards.iter()).any(|h| h.side == region.side() || h.distance_m <= nearest);
+        let judged = unknown_judged(verdict, region.side(), nearest);
         (region, steep && !judged, nearest)
     });
     for (region, _, nearest) in found.into_iter().filter(|&(_, new, _)| new) {

@@ -12,7 +12,7 @@ mod side;
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region, StripCell};
 use crate::grid::Cell;
-use crate::verdict::Verdict;
+use crate::verdict::{Side, Verdict};
 pub use belly::belly;
 pub(crate) use belly::{median, track_medians};
 use climb::{strip_hazards, wheel_heights, STEP_REACH_VOXELS};
@@ -442,6 +442,13 @@ const ROUGH_SPREAD_M: f32 = 0.015;
 /// seen 12.4 cm over the rover's ground in one inner strip and 14.3 cm in the next,
 /// was a go (`sweep -- families 100 6801 random` #7).
 pub(crate) const UNSEEN_FOOT_MARGIN_M: f32 = 0.01;
+/// Whether `verdict` already accounts for `unknown` ground `x` metres out on `side`
+/// ([`steep_exit`], [`side_exit`]): a hazard on that side, or one at least as near on
+/// any side, stops the rover there first.
+fn unknown_judged(verdict: &Verdict, side: Side, x: f32) -> bool {
+    (verdict.hazards.iter()).any(|h| h.side == side || h.distance_m <= x)
+}
+
 /// The ground the strip followed in cell `c` (`surface`, from [`steps_and_slopes`]),
 /// metres, when the cell is seen whole: not past the horizon, and in a track.
 fn followed(f: &Frame, surface: &[f32], c: usize) -> Option<f32> {

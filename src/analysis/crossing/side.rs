@@ -1,7 +1,7 @@
 //! Rises the image's side edge cuts: a stone in a track whose flank the camera sees
 //! climbing toward the left or right edge of its image, its top beside the view.
 
-use super::{followed, Frame, Region};
+use super::{followed, unknown_judged, Frame, Region};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
 /// Fewest strips across that a rise into the image's side edge must climb over, each
@@ -84,9 +84,7 @@ pub fn side_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             continue;
         };
         let nearest = s.x_centre(ix);
-        let judged =
-            (verdict.hazards.iter()).any(|h| h.side == region.side() || h.distance_m <= nearest);
-        if !judged {
+        if !unknown_judged(verdict, region.side(), nearest) {
             verdict.add_hazard(Hazard {
                 kind: HazardKind::Unknown,
                 side: region.side(),
