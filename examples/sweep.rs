@@ -7,7 +7,10 @@
 //! another way (`families::restyled`: value-noise rough ground, stones of four other
 //! shapes), or `-- bevelled [N] [SEED] [default|random] [FAMILY-INDEX]` for them
 //! with every band's vertical sides sloping (`families::bevelled`: a one-track
-//! ramp's side face fading over 2-15 cm), or
+//! ramp's side face fading over 2-15 cm), or `-- widened [N] [SEED]
+//! [default|random] [FAMILY-INDEX]` for them with each band under one side wider
+//! than the track (`families::widened`: its inner edge 0-15 cm into the belly band),
+//! or
 //! `-- hazards N SEED random` for the go/stop edges on random rigs, each edge where
 //! the rig sees the tracks, or `-- edges N SEED` for impassable edges that sweep
 //! does not draw (a step down under one side, a descent steeper than the limit, a
@@ -17,7 +20,7 @@
 //! runs at 20-60° to the axle, on random rigs, judged go or not, except where the
 //! camera meets the surface in the tracks at under `GRAZING_DEG` (a descent as steep
 //! as the line of sight to it is not seen there): any verdict passes, and the last
-//! lines count those frames; `families`, `natural` and `bevelled` excuse a scene due
+//! lines count those frames; `families`, `natural`, `bevelled` and `widened` excuse a scene due
 //! go in the same way, its incidence taken on its planes alone (no rough ground, no
 //! stones, each band's sides drawn vertical).
 //! `ONLY=3,7` checks
@@ -160,7 +163,10 @@ fn main() {
     if exact {
         println!("{not_drawn} scenes not drawn (not made of planes and rocks)");
     }
-    if matches!(mode, "oblique" | "families" | "natural" | "bevelled") {
+    if matches!(
+        mode,
+        "oblique" | "families" | "natural" | "bevelled" | "widened"
+    ) {
         println!(
             "{} frames met a surface under {GRAZING_DEG}° (any verdict passes), {} of them not go",
             excused.0, excused.1
@@ -172,12 +178,12 @@ fn main() {
 /// climbable surface the camera meets at grazing incidence somewhere in the tracks (a
 /// descent as steep as the line of sight to it) is not seen there, so any verdict
 /// passes, and go is the analysis' inference. In `families`, `natural` and
-/// `bevelled`, for a scene due go, judged on its planes alone (the far flanks of rough
+/// `bevelled` (and `widened`), for a scene due go, judged on its planes alone (the far flanks of rough
 /// ground's bumps and of stones face away from the camera too, and excuse nothing).
 fn unseen_at_grazing(mode: &str, want: &Expectation, terrain: &Terrain, config: &Config) -> bool {
     match mode {
         "oblique" => grazing(terrain, config),
-        "families" | "natural" | "bevelled" if want.verdict == Decision::Go => {
+        "families" | "natural" | "bevelled" | "widened" if want.verdict == Decision::Go => {
             grazing(&planes_of(terrain), config)
         }
         _ => false,
@@ -299,7 +305,7 @@ fn draw(
             let (t, w) = random::hazard_scene(rng, i);
             (t, w, Config::default(), tol)
         }
-        "families" | "natural" | "bevelled" => {
+        "families" | "natural" | "bevelled" | "widened" => {
             let rig = if random_rig {
                 families::Rig::random(rng)
             } else {
@@ -320,6 +326,11 @@ fn draw(
                 let mut style = rng.clone();
                 style.set_stream(2);
                 d = families::bevelled(&mut style, d);
+            }
+            if mode == "widened" {
+                let mut style = rng.clone();
+                style.set_stream(3);
+                d = families::widened(&mut style, d);
             }
             (d.terrain, d.expect, d.rig.config, d.tolerance)
         }

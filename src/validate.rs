@@ -525,6 +525,19 @@ pub fn run_families_bevelled(per_family: usize, seed: u64) -> Result<Vec<FamilyR
     )
 }
 
+/// [`run_families`] over the families with bands, each band under one side drawn
+/// wider than the wheel track ([`crate::sim::families::widened`]: its inner edge up
+/// to 15 cm into the belly band), as a scene drawn without our band edges in mind
+/// might.
+pub fn run_families_widened(per_family: usize, seed: u64) -> Result<Vec<FamilyResult>, Error> {
+    sweep_families(
+        &crate::sim::families::Family::BANDED,
+        per_family,
+        seed,
+        Style::Widened,
+    )
+}
+
 /// How [`sweep_families`] draws its scenes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Style {
@@ -534,6 +547,8 @@ enum Style {
     Restyled,
     /// [`crate::sim::families::bevelled`].
     Bevelled,
+    /// [`crate::sim::families::widened`].
+    Widened,
 }
 
 fn sweep_families(
@@ -542,7 +557,7 @@ fn sweep_families(
     seed: u64,
     how: Style,
 ) -> Result<Vec<FamilyResult>, Error> {
-    use crate::sim::families::{bevelled, draw, restyled, Rig};
+    use crate::sim::families::{bevelled, draw, restyled, widened, Rig};
     use rand::SeedableRng;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let mut style = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
@@ -561,6 +576,7 @@ fn sweep_families(
                 Style::Ours => d,
                 Style::Restyled => restyled(&mut style, d),
                 Style::Bevelled => bevelled(&mut style, d),
+                Style::Widened => widened(&mut style, d),
             };
             let config = d.rig.config.clone();
             let mut pipeline = Pipeline::new(config.clone())?;
@@ -629,6 +645,21 @@ pub fn bevelled_report(results: &[FamilyResult], per_family: usize, seed: u64) -
          but with each band's vertical sides sloping: the band's height fades linearly over \
          2-15 cm centred on its edge, as a renderer that samples a height map that far apart \
          and interpolates draws a vertical face (`sim::families::bevelled`).\n"
+    );
+    s + &families_table(results, per_family, seed)
+}
+
+/// The widened family sweep ([`run_families_widened`]) as a Markdown section.
+pub fn widened_report(results: &[FamilyResult], per_family: usize, seed: u64) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "\n## Bands wider than the track\n");
+    let _ = writeln!(
+        s,
+        "Scenes of the families with bands, drawn as there but with each band under one side \
+         wider than the wheel track: its inner edge 0-15 cm into the belly band (so the belly \
+         band's strips beside the track lie on the ramp or in the trench, and the band's side \
+         face stands inside the belly band), a one-track band's outer edge 0-40 cm past the \
+         track's (`sim::families::widened`).\n"
     );
     s + &families_table(results, per_family, seed)
 }

@@ -36,6 +36,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         report += &validate::restyled_report(&restyled, families, validate::FAMILY_SEED);
         let bevelled = validate::run_families_bevelled(families, validate::FAMILY_SEED)?;
         report += &validate::bevelled_report(&bevelled, families, validate::FAMILY_SEED);
+        let widened = validate::run_families_widened(families, validate::FAMILY_SEED)?;
+        report += &validate::widened_report(&widened, families, validate::FAMILY_SEED);
         let drive = validate::run_memory_drive(validate::FAMILY_SEED)?;
         report += &validate::memory_drive_report(&drive, validate::FAMILY_SEED);
     }

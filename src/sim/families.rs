@@ -483,6 +483,41 @@ pub fn bevelled<R: Rng>(rng: &mut R, mut d: Draw) -> Draw {
     d
 }
 
+/// `d` with each band under one side drawn wider than the wheel track, as a scene
+/// drawn without our band edges in mind might: its inner edge 0-15 cm into the
+/// belly band (0-75 % of the belly's half width, so that two ramps never meet), a
+/// one-track band's outer edge 0-40 cm past the track's. A face along the band's edge
+/// then stands inside the belly band, and the belly band's strips beside it lie on
+/// the ramp the track climbs (or in the trench it dips into). The expectation
+/// stands: the track's ground is the band's own, and the belly band sits over the
+/// same surface as the track beside it, a ramp's part of it at most a third of the
+/// ramp's height above the line between the two tracks.
+pub fn widened<R: Rng>(rng: &mut R, mut d: Draw) -> Draw {
+    let bhw = d.rig.config.rover.belly_half_width_m;
+    for e in &mut d.terrain.elements {
+        if let Element::Ramp { extent, .. } | Element::Step { extent, .. } = e {
+            if let Extent::Band { from_m, to_m } = extent {
+                // Both drawn for every band, so the stream does not depend on the scene.
+                let inward = rng.gen_range(0.0..0.75 * bhw);
+                let outward = rng.gen_range(0.0..0.4);
+                let far = |v: f64| v.abs() > 50.0;
+                if (*from_m - bhw).abs() < 1e-9 {
+                    *from_m -= inward;
+                    if !far(*to_m) {
+                        *to_m += outward;
+                    }
+                } else if (*to_m + bhw).abs() < 1e-9 {
+                    *to_m += inward;
+                    if !far(*from_m) {
+                        *from_m -= outward;
+                    }
+                }
+            }
+        }
+    }
+    d
+}
+
 /// Draw a scene of `family` on `rig`.
 pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
     let at = Setting::new(rng, &rig.config);
@@ -780,6 +815,74 @@ mod tests {
         (c.mount.x_m, c.mount.y_m, c.mount.z_m) = (0.0, 0.0, 1.2);
         (c.mount.roll_deg, c.mount.pitch_deg, c.mount.yaw_deg) = (0.0, 30.0, 0.0);
         c
+    }
+
+    #[test]
+    fn a_widened_band_reaches_into_the_belly_band_and_past_the_track_only() {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12);
+        let (bhw, outer) = (0.2, 0.7);
+        let families = [
+            Family::OneTrackRamp,
+            Family::HalfPlaneDescent,
+            Family::OneTrackDescent,
+            Family::TwoRamps,
+        ];
+        let mut moved = 0;
+        for k in 0..80 {
+            let d = draw(&mut rng, families[k % families.len()], Rig::default_rig());
+            let w = widened(&mut rng, d.clone());
+            assert_eq!(w.expect, d.expect);
+            for (a, b) in d.terrain.elements.iter().zip(&w.terrain.elements) {
+                let band = |e: &Element| match e {
+                    Element::Ramp {
+                        extent: Extent::Band { from_m, to_m },
+                        ..
+                    } => (*from_m, *to_m),
+                    other => panic!("not a band: {other:?}"),
+                };
+                let ((f0, t0), (f1, t1)) = (band(a), band(b));
+                // The side (mirrored on the right) and the inner and outer edges.
+                let s = if f0 > 0.0 { 1.0 } else { -1.0 };
+                let (inner0, outer0, inner1, outer1) = if s > 0.0 {
+                    (f0, t0, f1, t1)
+                } else {
+                    (-t0, -f0, -t1, -f1)
+                };
+                assert!((inner0 - bhw).abs() < 1e-12, "{a:?}");
+                assert!(inner1 <= inner0 && inner1 >= 0.25 * bhw, "{b:?}");
+                if outer0 > 50.0 {
+                    assert_eq!(outer1, outer0, "a half plane keeps its far edge");
+                } else {
+                    assert!((outer0 - outer).abs() < 1e-12, "{a:?}");
+                    assert!(outer1 >= outer0 && outer1 <= outer0 + 0.4, "{b:?}");
+                }
+                moved += usize::from(inner0 - inner1 > 0.05);
+                // By hand: half-way between the old and the new inner edge, 0.5 m
+                // past the toe along the band's centre line, a straight ramp stands
+                // 0.5 m · tan(gradient) up (capped); the ground there was flat before.
+                if let Element::Ramp {
+                    toe_x_m,
+                    gradient_deg,
+                    alpha_deg,
+                    cap_m,
+                    ..
+                } = *b
+                {
+                    if alpha_deg == 0.0 && inner0 - inner1 > 0.01 {
+                        let (x, y) = (toe_x_m + 0.5, s * 0.5 * (inner0 + inner1));
+                        let mut want = 0.5 * gradient_deg.to_radians().tan();
+                        if let Some(cap) = cap_m {
+                            want = want.clamp(-cap, cap);
+                        }
+                        let got = Terrain::new(vec![b.clone()]).height(x, y);
+                        assert!((got - want).abs() < 1e-9, "{got} vs {want}: {b:?}");
+                        assert_eq!(Terrain::new(vec![a.clone()]).height(x, y), 0.0);
+                    }
+                }
+            }
+        }
+        assert!(moved > 20, "{moved} bands moved more than 5 cm");
     }
 
     #[test]

@@ -368,29 +368,17 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .map(|(_, c)| c.top)
                 .fold(f32::NEG_INFINITY, f32::max);
             let rise = top - foot.1;
-            if rise < STEEP_EXIT_SHORT_RISE_M {
+            // A belly strip on what the track beside it climbs: that track's strips
+            // judge the climb.
+            if rise < STEEP_EXIT_SHORT_RISE_M
+                || (region == Region::Belly && on_track_beside(f, iy, h, top))
+            {
                 continue;
             }
-            // A face across the strip within one cut cell (its points span the rise
-            // in 5 cm: steeper than 45°; its upper surface beyond its lower one more
-            // than beside it, unlike a ramp's side face along the strip), or the climb
-            // and the cut cells' upper surface on one line steeper than the limit (a
-            // face the cell boundary splits, a steep ramp).
-            let spans = |c: &Cell| c.top - c.low >= STEEP_EXIT_RISE_M;
-            let face = cut.clone().any(|(_, c)| {
-                let (dx, dy) = (c.crest_xy[0] - c.foot_xy[0], c.crest_xy[1] - c.foot_xy[1]);
-                spans(c) && dx > dy.abs()
-            });
-            // A face whose points depth noise spreads so that neither band of the
-            // cell is a surface (`crest` and `foot` both the mean) has no orientation
-            // of its own; its points not hugging one side of the cell, it is not
-            // along the strip. Counted only where most of the band shows a front.
-            let y_mid = s.y_centre(iy);
-            let spread = cut.clone().any(|(_, c)| {
-                spans(c)
-                    && c.crest_xy == c.foot_xy
-                    && (c.y - y_mid).abs() < FACE_OFF_VOXELS * s.voxel_m
-            });
+            // A face across the strip within one cut cell, or the climb and the cut
+            // cells' upper surface on one line steeper than the limit (a face the
+            // cell boundary splits, a steep ramp).
+            let (face, spread) = fronts(f, iy, cut.clone());
             let climb = before().take_while(|&(x, _)| x > foot.0);
             let points = std::iter::once(foot)
                 .chain(climb)
@@ -437,6 +425,57 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         });
     }
 }
+
+/// Whether strip `iy`'s cut cells (`cut`, from its first, `h`) show a front across
+/// the strip, `(face, spread)`. `face`: a cell whose points span
+/// [`STEEP_EXIT_RISE_M`] in 5 cm (steeper than 45°), its upper surface beyond its
+/// lower one more than beside it, unlike a ramp's side face along the strip. `spread`:
+/// a cell whose points span as much but whose two surfaces depth noise has merged
+/// (`crest` and `foot` both the mean), so it has no orientation of its own; its
+/// points not hugging one side of the cell, it is not along the strip (counted only
+/// where most of the band shows a front).
+fn fronts<'c>(f: &Frame, iy: usize, cut: impl Iterator<Item = (usize, &'c Cell)>) -> (bool, bool) {
+    let y_mid = f.spec.y_centre(iy);
+    cut.filter(|(_, c)| c.top - c.low >= STEEP_EXIT_RISE_M)
+        .fold((false, false), |(face, spread), (_, c)| {
+            let (dx, dy) = (c.crest_xy[0] - c.foot_xy[0], c.crest_xy[1] - c.foot_xy[1]);
+            let merged =
+                c.crest_xy == c.foot_xy && (c.y - y_mid).abs() < FACE_OFF_VOXELS * f.spec.voxel_m;
+            (face || dx > dy.abs(), spread || merged)
+        })
+}
+
+/// Whether belly strip `iy`, whose view ends at row `h` with its cut cells' top at
+/// `top` (metres), lies on the surface the wheel track on its side climbs: `top`
+/// stands no more than a wheel radius above the highest top of that track's seen
+/// cells within [`BESIDE_ROWS`] rows before `h` and two after (the rows the cut
+/// cells span). A one-track ramp drawn wider than the track reaches into the belly
+/// band; its strips there rise with the track out of view, and the face along the
+/// ramp's inner edge, inside the strip, spans its cut cells as a front across it
+/// would (a 24.5° ramp whose inner edge lay 15 cm into the belly band was
+/// `unknown`: `sweep -- widened 100 1202 default 0` #28). An obstacle under the
+/// belly stands more than a wheel radius above the track beside it (as the belly
+/// test asks of what rises out of view there), or it is no taller than what the
+/// wheel climbs.
+fn on_track_beside(f: &Frame, iy: usize, h: usize, top: f32) -> bool {
+    let s = f.spec;
+    let side = if s.y_centre(iy) >= 0.0 {
+        Region::Left
+    } else {
+        Region::Right
+    };
+    let beside = f
+        .strips(side)
+        .flat_map(|j| (h.saturating_sub(BESIDE_ROWS)..(h + 3).min(s.nx)).map(move |i| s.cell(i, j)))
+        .filter(|&c| f.seen[c])
+        .map(|c| f.cells[c].top)
+        .fold(f32::NEG_INFINITY, f32::max);
+    top <= beside + f.cfg.rover.wheel_radius_m as f32
+}
+
+/// Rows before a belly strip's view ends in which [`on_track_beside`] looks for the
+/// track beside it (as the belly test borrows a track's height from up to 3 rows).
+const BESIDE_ROWS: usize = 3;
 
 /// Where a strip's view ends (`h`, its first cut cell) on smooth ground, whether the
 /// cut cells show a rise steeper than the rover climbs: the x of the last ground cell
