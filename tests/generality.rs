@@ -3561,3 +3561,34 @@ fn a_one_track_ramp_wider_than_the_track_reaching_into_the_belly_band_is_measure
         assert_ne!(v.decision, Decision::Go, "{:?}", v.hazards);
     }
 }
+
+#[test]
+fn a_block_under_a_belly_rolled_by_a_one_track_ramp_is_measured_from_the_rolled_belly() {
+    // The left track climbs a 24.5° ramp (toe 0.70 m), the right one stays on flat
+    // ground: the body rolls, and its belly rests on the line between the tracks. A
+    // block 1.3-2.3 m out spans y = −0.15 to +0.05 m. By hand, 1.3 m out the ramp
+    // stands (1.3 − 0.7046) · tan 24.47° = 0.271 m; the line between the tracks
+    // (±0.45 m) over the block's right edge is 0.271 · 0.3 / 0.9 = 0.090 m up, and the
+    // 0.32 m clearance, upright under a roll of atan(0.271 / 0.9), is 0.32 · √(1 +
+    // 0.301²) = 0.334 m: the belly passes 0.424 m up there (higher farther on, as the
+    // ramp rises). A 0.5 m block stops (`belly`), clean and noisy; measured from the
+    // higher track alone (0.271 + 0.32 = 0.59 m) it went. A 0.38 m block passes
+    // under: go, measured.
+    let c = Config::default();
+    let ramp = Element::ramp(0.7046, 0.45, 24.47, 0.0, LEFT_TRACK);
+    let tall = block_at(1.3, -0.05, 1.0, 0.2, 0.5);
+    for v in analyse_views(vec![ramp.clone(), tall], &c, [None, Some(13)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
+        assert!(
+            v.hazards
+                .iter()
+                .any(|h| h.kind == HazardKind::Belly && (h.distance_m - 1.275).abs() < 0.06),
+            "{:?}",
+            v.hazards
+        );
+    }
+    let low = block_at(1.3, -0.05, 1.0, 0.2, 0.38);
+    let [clean, noisy] = analyse_views(vec![ramp, low], &c, [None, Some(13)]);
+    assert_go(&clean, 3, 0.7046, 24.47, None);
+    assert_noisy_go(&noisy, 3, 0.7046, 24.47);
+}

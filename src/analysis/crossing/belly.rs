@@ -4,11 +4,12 @@
 use super::{line_fit, Frame, Region, ROUGH_LINE_RMS_M};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
-/// Anything under the belly taller than the belly clearance above the higher of the
-/// two wheel tracks at the same distance (the median height of each track's cells
-/// seen whole in that row; a row with none borrows the nearest row within 3 cells,
-/// else the ground plane z = 0, unless the track there is past the sensor's horizon:
-/// then the row is beyond view and not judged). A cell the image's top edge cuts
+/// Anything under the belly taller than the belly clearance above the line between
+/// the two wheel tracks at the same distance ([`belly_line`]; each track's height the
+/// median height of its cells seen whole in that row; a row with none borrows the
+/// nearest row within 3 cells, else the other track's or the ground plane z = 0,
+/// unless the track there is past the sensor's horizon: then the row is beyond view
+/// and not judged). A cell the image's top edge cuts
 /// holds only what lies below the edge: a ramp rising out of view left in one such
 /// track cell a few centimetres of its side face, and that "track height" put the
 /// ramp's side in the belly band 40 cm above it (`sweep -- families 100 5501 random`
@@ -24,28 +25,27 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
     track_medians(f, values, track_ref, |c| {
         (f.seen[c] && !f.past[c]).then(|| f.cells[c].z)
     });
+    let tc = f.cfg.rover.track_centre_m() as f32;
     for ix in 0..s.nx {
-        let mut reference = f32::NEG_INFINITY;
+        let mut wheels = [None; 2];
         let mut beyond_view = false;
         for (k, region) in [Region::Left, Region::Right].into_iter().enumerate() {
-            let near = (0..=3usize)
+            wheels[k] = (0..=3usize)
                 .flat_map(|d| [ix.checked_sub(d), Some(ix + d)])
                 .flatten()
                 .filter_map(|j| track_ref.get(j).map(|r| r[k]))
                 .find(|v| !v.is_nan());
-            match near {
-                Some(v) => reference = reference.max(v),
-                // No track data near this row because the track is past the horizon:
-                // how high the wheels stand here is not known.
-                None => beyond_view |= f.strips(region).any(|iy| f.past[s.cell(ix, iy)]),
-            }
+            // No track data near this row because the track is past the horizon:
+            // how high the wheels stand here is not known.
+            beyond_view |= wheels[k].is_none() && f.strips(region).any(|iy| f.past[s.cell(ix, iy)]);
         }
         if beyond_view {
             continue;
         }
-        if reference == f32::NEG_INFINITY {
-            reference = 0.0;
-        }
+        let higher = match wheels {
+            [None, None] => 0.0,
+            _ => wheels.into_iter().flatten().fold(f32::NEG_INFINITY, f32::max),
+        };
         for iy in f.strips(Region::Belly) {
             let c = s.cell(ix, iy);
             if !f.seen[c] {
@@ -73,20 +73,29 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
                         cell.crest
                     }
                 })
-                .fold(reference, f32::max);
-            let above = f.cells[c].top - beside;
+                .fold(f32::NEG_INFINITY, f32::max);
+            let top = f.cells[c].top;
+            let (line, secant) = belly_line(wheels, tc, s.y_centre(iy));
+            let under_belly = top - beside.max(line);
             let edge = || {
                 [iy.checked_sub(1), Some(iy + 1)]
                     .into_iter()
                     .any(|j| j.is_none_or(|j| j >= s.ny || f.region[j] != Region::Belly))
             };
-            let kind = if above > clearance {
+            let kind = if under_belly > clearance * secant {
                 Some(HazardKind::Belly)
-            } else if f.past[c] && above > r && !edge() && !on_track_surface(f, ix, iy, r) {
-                // Rising out of the image more than a wheel radius above the tracks
-                // beside it, which are seen: an obstacle whose top is not seen. How
-                // tall it is, is not known. (An edge cell may hold the side of a
-                // ramp under the track beside it, rising out of view with it.)
+            } else if f.past[c]
+                && top - beside.max(higher) > r
+                && !edge()
+                && !on_track_surface(f, ix, iy, r)
+            {
+                // Rising out of the image more than a wheel radius above the higher
+                // of the tracks beside it, which are seen: an obstacle whose top is
+                // not seen. How tall it is, is not known. (An edge cell may hold the
+                // side of a ramp under the track beside it, rising out of view with
+                // it; a ramp drawn wider than the track reaches into the band, its
+                // part there under the line between the tracks by a third of its
+                // height, and rises out of view with the track.)
                 Some(HazardKind::Unknown)
             } else {
                 None
@@ -99,6 +108,26 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
                 });
             }
         }
+    }
+}
+
+/// Where the belly's underside rests, less its clearance, over strip centre `y`
+/// (metres left), and by how much its clearance grows measured upright (the secant
+/// of the body's roll): on the line between the two wheel tracks' heights `[left,
+/// right]` at their centre lines (±`tc`), as the rigid body rolls when one track
+/// stands higher than the other; one track's height where the other's is not known,
+/// and the ground plane (z = 0) where neither is, level. The higher track's height
+/// alone, as before, let a 0.5 m block 5-15 cm right of the centre line pass under a
+/// body whose left track climbed a ramp 0.27 m high beside it: the belly there rests
+/// 0.12 m up, not 0.27 m.
+fn belly_line(wheels: [Option<f32>; 2], tc: f32, y: f32) -> (f32, f32) {
+    match wheels {
+        [Some(left), Some(right)] => {
+            let slope = (left - right) / (2.0 * tc);
+            (right + slope * (y + tc), slope.hypot(1.0))
+        }
+        [Some(v), None] | [None, Some(v)] => (v, 1.0),
+        [None, None] => (0.0, 1.0),
     }
 }
 
@@ -180,6 +209,23 @@ pub(crate) fn median(values: &mut [f32]) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_belly_rests_on_the_line_between_the_tracks_its_clearance_upright_under_roll() {
+        // By hand: tracks 0.9 m apart, the left one 0.27 m up. Over y = 0.05 m the
+        // line stands 0.27 · 0.5 / 0.9 = 0.15 m up; the roll's secant is √(1 + 0.3²).
+        let (line, secant) = belly_line([Some(0.27), Some(0.0)], 0.45, 0.05);
+        assert!((line - 0.15).abs() < 1e-6, "{line}");
+        assert!((secant - 1.09f32.sqrt()).abs() < 1e-6, "{secant}");
+        // Mirrored: the right track up, over y = −0.05 m.
+        let (line, _) = belly_line([Some(0.0), Some(0.27)], 0.45, -0.05);
+        assert!((line - 0.15).abs() < 1e-6, "{line}");
+        // Level tracks: their height, no roll.
+        assert_eq!(belly_line([Some(0.04), Some(0.04)], 0.45, 0.1), (0.04, 1.0));
+        // One track not known: the other's height, level; neither: the ground plane.
+        assert_eq!(belly_line([None, Some(0.2)], 0.45, 0.1), (0.2, 1.0));
+        assert_eq!(belly_line([None, None], 0.45, 0.1), (0.0, 1.0));
+    }
 
     #[test]
     fn the_median_by_selection_is_the_sorted_middle() {
