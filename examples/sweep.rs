@@ -2,7 +2,9 @@
 //! issue's bars, clean and with Kinect v1 noise:
 //! `cargo run --release --example sweep -- [workcases|hazards] [N] [SEED]`, or
 //! `-- families [N] [SEED] [default|random] [FAMILY-INDEX]` for the scene families of
-//! `sim::families` on the default rig or on random mounts and cameras, or
+//! `sim::families` on the default rig or on random mounts and cameras (without an
+//! index, `Family::ALL`'s in turn; index 11 is `Family::LATER`'s rock under the belly
+//! beside a one-track ramp), or
 //! `-- natural [N] [SEED] [default|random] [FAMILY-INDEX]` for the same scenes drawn
 //! another way (`families::restyled`: value-noise rough ground, stones of four other
 //! shapes), or `-- bevelled [N] [SEED] [default|random] [FAMILY-INDEX]` for them
@@ -66,7 +68,8 @@ fn main() {
     let random_rig = args.get(4).map(String::as_str) == Some("random");
     // FLYING=FRACTION: mix that fraction of the noisy frames' edge pixels too.
     let flying: Option<f64> = std::env::var("FLYING").ok().and_then(|v| v.parse().ok());
-    // `families` mode: just this family (its index in `families::Family::ALL`).
+    // `families` mode: just this family (its index in `families::Family::ALL`, then
+    // `LATER`: `families::Family::by_index`).
     let family = args.get(5).and_then(|s| s.parse::<usize>().ok());
     let (mut failures, mut total, mut false_go, mut excused) = (0, 0, 0, (0, 0));
     let exact = std::env::var("EXACT").is_ok_and(|v| v == "1");
@@ -312,7 +315,7 @@ fn draw(
                 families::Rig::default_rig()
             };
             let fam = match family {
-                Some(k) => families::Family::ALL[k],
+                Some(k) => families::Family::by_index(k).expect("a family index"),
                 None => families::Family::ALL[i % families::Family::ALL.len()],
             };
             let mut d = families::draw(rng, fam, rig);

@@ -492,8 +492,9 @@ pub struct FamilyResult {
 /// rigs (deterministic for `seed`), render each, and analyse it clean and with
 /// Kinect v1 noise.
 pub fn run_families(per_family: usize, seed: u64) -> Result<Vec<FamilyResult>, Error> {
+    use crate::sim::families::Family;
     sweep_families(
-        &crate::sim::families::Family::ALL,
+        &[&Family::ALL[..], &Family::LATER[..]].concat(),
         per_family,
         seed,
         Style::Ours,

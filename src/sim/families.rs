@@ -46,6 +46,11 @@ pub enum Family {
     TwoRamps,
     /// A rock on a full-width ramp: a 4-8 cm pebble is go, a 15-20 cm rock stop.
     RockOnRamp,
+    /// A rock under the belly while one track climbs a straight ramp beside it: the
+    /// body rolls, and its belly rests on the line between the tracks. Go or stop by
+    /// a hand calculation of the belly's clearance over the rock
+    /// ([`belly_margin`]), at least 5 cm either way.
+    BellyRockBesideRamp,
 }
 
 impl Family {
@@ -63,6 +68,19 @@ impl Family {
         Family::TwoRamps,
         Family::RockOnRamp,
     ];
+
+    /// Families added after [`Family::ALL`]'s sweeps were measured, drawn when asked
+    /// for by index (after ALL's: [`Family::by_index`]) and in the validation report
+    /// after ALL's, so that a sweep over ALL draws what it drew before.
+    pub const LATER: [Family; 1] = [Family::BellyRockBesideRamp];
+
+    /// Family `k`: [`Family::ALL`]'s, then [`Family::LATER`]'s; `None` past them.
+    pub fn by_index(k: usize) -> Option<Family> {
+        Family::ALL
+            .get(k)
+            .or_else(|| Family::LATER.get(k.checked_sub(Family::ALL.len())?))
+            .copied()
+    }
 
     /// The families of natural ground: rough ground and rocks, the ones
     /// [`restyled`] draws another way.
@@ -99,6 +117,7 @@ impl Family {
             Family::BellyRock => "belly rock",
             Family::TwoRamps => "two ramps",
             Family::RockOnRamp => "rock on ramp",
+            Family::BellyRockBesideRamp => "belly rock beside a ramp",
         }
     }
 }
@@ -533,6 +552,7 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
         Family::BellyRock => belly_rock(rng, &at),
         Family::TwoRamps => two_ramps(rng, &at),
         Family::RockOnRamp => rock_on_ramp(rng, &at),
+        Family::BellyRockBesideRamp => belly_rock_beside_ramp(rng, &at),
     };
     let rough_ground = elements
         .iter()
@@ -570,6 +590,8 @@ struct Setting {
     left: bool,
     s: f64,
     diagonal_min_deg: f64,
+    /// The rover's belly clearance, metres.
+    clearance: f64,
 }
 
 impl Setting {
@@ -587,6 +609,7 @@ impl Setting {
             left,
             s: if left { 1.0 } else { -1.0 },
             diagonal_min_deg: config.analysis.diagonal_min_deg,
+            clearance: config.rover.belly_clearance_m,
         }
     }
 
@@ -772,6 +795,79 @@ fn two_ramps<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
     )
 }
 
+/// A rock under the belly beside a straight one-track ramp (15-25°): 12-17 cm in
+/// radius, within 3 cm of the centre line (so within the belly band), 0.1-0.9 m past
+/// the toe; 0.15-0.65 m high, drawn so that the belly clears it by 5 cm or more (go,
+/// the ramp's workcase) or meets it by as much (stop, `belly`).
+fn belly_rock_beside_ramp<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+    let g = rng.gen_range(15.0..25.0);
+    let d = rng.gen_range(at.toe_span.0..at.toe_span.1);
+    let ramp = Element::ramp(d, at.s * at.tc, g, 0.0, at.band());
+    let near = d + 0.1;
+    let x_m = rng.gen_range(near..(d + 0.9).min(at.far - 0.2).max(near + 0.1));
+    let (y_m, radius_m) = (rng.gen_range(-0.03..0.03), rng.gen_range(0.12..0.17));
+    let tall = rng.gen_bool(0.5);
+    let fits = |height_m: f64| {
+        let m = belly_margin(at, (d, g), (x_m, y_m, radius_m, height_m));
+        if tall {
+            m <= -BELLY_MARGIN_M
+        } else {
+            m >= BELLY_MARGIN_M
+        }
+    };
+    // A bounded draw: a height either way exists for every ramp drawn (0.15 m
+    // clears 0.32 m by more; 0.65 m meets a belly at most 0.5 m up over the rock).
+    let height_m = (0..1000)
+        .map(|_| rng.gen_range(0.15..0.65))
+        .find(|&h| fits(h))
+        .unwrap_or(if tall { 0.65 } else { 0.15 });
+    let rock = Element::Rock {
+        x_m,
+        y_m,
+        radius_m,
+        height_m,
+    };
+    let want = if tall {
+        stop(HazardKind::Belly)
+    } else {
+        go(if at.left { 3 } else { 5 }, Some(d), Some(g), None)
+    };
+    (vec![ramp, rock], want)
+}
+
+/// How far the belly's underside clears a rock (`x, y, radius, height`, metres;
+/// negative where it meets it) while the drawn side's track climbs a straight ramp
+/// (`toe` m, `gradient` °) and the other stays on flat ground: the least, over the
+/// rock's footprint (sampled every 5 mm), of the underside's height less the rock's
+/// surface (a half-ellipsoid). A hand calculation of the rover's rule: at each x the
+/// belly rests on the line between the tracks' heights at their centre lines, its
+/// clearance measured upright under the body's roll (`clearance · √(1 + slope²)`).
+fn belly_margin(at: &Setting, (toe, gradient): (f64, f64), rock: (f64, f64, f64, f64)) -> f64 {
+    let (x0, y0, radius, height) = rock;
+    let steps = (radius / 0.005).ceil() as i32;
+    let mut least = f64::INFINITY;
+    for i in -steps..=steps {
+        for j in -steps..=steps {
+            let (dx, dy) = (f64::from(i) * 0.005, f64::from(j) * 0.005);
+            let q = 1.0 - (dx * dx + dy * dy) / (radius * radius);
+            if q < 0.0 {
+                continue;
+            }
+            let (x, y) = (x0 + dx, y0 + dy);
+            let up = ((x - toe) * gradient.to_radians().tan()).max(0.0);
+            let (left, right) = if at.left { (up, 0.0) } else { (0.0, up) };
+            let slope = (left - right) / (2.0 * at.tc);
+            let underside = right + slope * (y + at.tc) + at.clearance * slope.hypot(1.0);
+            least = least.min(underside - height * q.sqrt());
+        }
+    }
+    least
+}
+
+/// The least margin, either way, by which [`belly_rock_beside_ramp`] draws a rock
+/// clear of the belly or into it, metres.
+const BELLY_MARGIN_M: f64 = 0.05;
+
 /// A pebble or a rock on a full-width ramp.
 fn rock_on_ramp<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
     let d = rng.gen_range(at.toe_span.0.max(0.8)..at.toe_span.1.max(0.9));
@@ -815,6 +911,67 @@ mod tests {
         (c.mount.x_m, c.mount.y_m, c.mount.z_m) = (0.0, 0.0, 1.2);
         (c.mount.roll_deg, c.mount.pitch_deg, c.mount.yaw_deg) = (0.0, 30.0, 0.0);
         c
+    }
+
+    #[test]
+    fn the_belly_margin_over_a_rock_is_the_rolled_belly_s_height_less_the_rock_s() {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let mut at = Setting::new(&mut rng, &Config::default());
+        (at.left, at.s) = (true, 1.0);
+        // Flat ground under both tracks (the ramp's toe past the rock): the belly
+        // stands its clearance, 0.32 m, over the rock's apex.
+        let m = belly_margin(&at, (3.0, 20.0), (1.5, 0.0, 0.15, 0.25));
+        assert!((m - 0.07).abs() < 1e-9, "{m}");
+        // By hand: a 20° ramp from 1 m under the left track stands 0.5 · tan 20° =
+        // 0.18199 m 1.5 m out; the line between the tracks (±0.45 m) slopes 0.20221 and
+        // over y = 0 stands 0.09100 m; the clearance upright, 0.32 · √(1 + 0.20221²) =
+        // 0.32648 m: the underside 0.41747 m over a needle-thin rock's apex, 0.4 m.
+        let m = belly_margin(&at, (1.0, 20.0), (1.5, 0.0, 0.005, 0.4));
+        assert!((m - 0.01747).abs() < 1e-4, "{m}");
+        // Mirrored on the right: the same.
+        (at.left, at.s) = (false, -1.0);
+        let mirrored = belly_margin(&at, (1.0, 20.0), (1.5, 0.0, 0.005, 0.4));
+        assert!((mirrored - m).abs() < 1e-12, "{mirrored}");
+    }
+
+    #[test]
+    fn a_belly_rock_beside_a_ramp_is_drawn_clear_of_the_belly_or_into_it_by_its_margin() {
+        use rand::SeedableRng;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let mut kinds = [0, 0];
+        for _ in 0..40 {
+            let rig = Rig::random(&mut rng);
+            let at = Setting::new(&mut rng.clone(), &rig.config);
+            let d = draw(&mut rng, Family::BellyRockBesideRamp, rig);
+            let [Element::Ramp {
+                toe_x_m,
+                gradient_deg,
+                ref_y_m,
+                ..
+            }, Element::Rock {
+                x_m,
+                y_m,
+                radius_m,
+                height_m,
+            }] = d.terrain.elements[..]
+            else {
+                panic!("a ramp and a rock: {:?}", d.terrain.elements);
+            };
+            let mut at = at;
+            (at.left, at.s) = (ref_y_m > 0.0, ref_y_m.signum());
+            assert!(y_m.abs() + radius_m <= at.belly_half_width, "under the belly");
+            let m = belly_margin(&at, (toe_x_m, gradient_deg), (x_m, y_m, radius_m, height_m));
+            if d.expect.verdict == Decision::Go {
+                assert!(m >= BELLY_MARGIN_M, "{m}");
+                kinds[0] += 1;
+            } else {
+                assert_eq!(d.expect.hazard, Some(HazardKind::Belly));
+                assert!(m <= -BELLY_MARGIN_M, "{m}");
+                kinds[1] += 1;
+            }
+        }
+        assert!(kinds[0] >= 10 && kinds[1] >= 10, "{kinds:?}");
     }
 
     #[test]
