@@ -3592,3 +3592,28 @@ fn a_block_under_a_belly_rolled_by_a_one_track_ramp_is_measured_from_the_rolled_
     assert_go(&clean, 3, 0.7046, 24.47, None);
     assert_noisy_go(&noisy, 3, 0.7046, 24.47);
 }
+
+#[test]
+fn ground_falling_away_beside_a_track_rolls_the_body_and_is_no_belly_obstacle() {
+    // Ground beyond the left track's inner edge (y ≥ 0.2 m) falls away at 15° from
+    // 1 m, seen to the corridor's end by a camera 1.2 m high pitched 30°: 2.95 m out
+    // the left track stands 0.51 m down, a roll of 30°, and the belly band's flat
+    // ground stands 0.36 m over the line between the tracks there. The rigid body's
+    // belly would meet that edge; the paper's workcase 9 calls the ground go, and the
+    // ground the belly band lies on is not measured as an obstacle under it (a noisy
+    // frame was a `belly` stop at 2.95 m while the line alone was the reference).
+    let c = mounted([0.0, 0.0, 1.2], [0.0, 30.0, 0.0]);
+    let half_plane = Extent::Band {
+        from_m: 0.2,
+        to_m: 100.0,
+    };
+    let descent = vec![Element::ramp(1.0, 0.45, -15.0, 0.0, half_plane)];
+    let [clean, noisy] = analyse_views(descent, &c, [None, Some(3)]);
+    assert_go(&clean, 9, 1.0, -15.0, None);
+    assert_noisy_go(&noisy, 9, 1.0, -15.0);
+    assert!(
+        noisy.tilt.is_some_and(|t| t.roll_deg.abs() > 25.0),
+        "{:?}",
+        noisy.tilt
+    );
+}

@@ -960,7 +960,10 @@ mod tests {
             };
             let mut at = at;
             (at.left, at.s) = (ref_y_m > 0.0, ref_y_m.signum());
-            assert!(y_m.abs() + radius_m <= at.belly_half_width, "under the belly");
+            assert!(
+                y_m.abs() + radius_m <= at.belly_half_width,
+                "under the belly"
+            );
             let m = belly_margin(&at, (toe_x_m, gradient_deg), (x_m, y_m, radius_m, height_m));
             if d.expect.verdict == Decision::Go {
                 assert!(m >= BELLY_MARGIN_M, "{m}");

@@ -5,7 +5,7 @@ use super::{line_fit, Frame, Region, ROUGH_LINE_RMS_M};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
 /// Anything under the belly taller than the belly clearance above the line between
-/// the two wheel tracks at the same distance ([`belly_line`]; each track's height the
+/// the two wheel tracks at the same distance ([`belly_underside`]; each track's height the
 /// median height of its cells seen whole in that row; a row with none borrows the
 /// nearest row within 3 cells, else the other track's or the ground plane z = 0,
 /// unless the track there is past the sensor's horizon: then the row is beyond view
@@ -42,10 +42,16 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
         if beyond_view {
             continue;
         }
-        let higher = match wheels {
-            [None, None] => 0.0,
-            _ => wheels.into_iter().flatten().fold(f32::NEG_INFINITY, f32::max),
-        };
+        let higher = higher_track(wheels);
+        // The belly band's own lowest ground in the row, seen whole (see
+        // `belly_underside`).
+        let floor = f
+            .strips(Region::Belly)
+            .map(|iy| s.cell(ix, iy))
+            .filter(|&c| f.seen[c] && !f.past[c])
+            .map(|c| f.cells[c].z)
+            .reduce(f32::min)
+            .unwrap_or(f32::NEG_INFINITY);
         for iy in f.strips(Region::Belly) {
             let c = s.cell(ix, iy);
             if !f.seen[c] {
@@ -75,14 +81,13 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
                 })
                 .fold(f32::NEG_INFINITY, f32::max);
             let top = f.cells[c].top;
-            let (line, secant) = belly_line(wheels, tc, s.y_centre(iy));
-            let under_belly = top - beside.max(line);
+            let underside = belly_underside(wheels, tc, s.y_centre(iy), floor, clearance);
             let edge = || {
                 [iy.checked_sub(1), Some(iy + 1)]
                     .into_iter()
                     .any(|j| j.is_none_or(|j| j >= s.ny || f.region[j] != Region::Belly))
             };
-            let kind = if under_belly > clearance * secant {
+            let kind = if top > underside.max(beside + clearance) {
                 Some(HazardKind::Belly)
             } else if f.past[c]
                 && top - beside.max(higher) > r
@@ -111,15 +116,18 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
     }
 }
 
+/// The higher of the two wheel tracks' heights `[left, right]` (metres), the one
+/// known, or the ground plane (z = 0) where neither is.
+fn higher_track(wheels: [Option<f32>; 2]) -> f32 {
+    wheels.into_iter().flatten().reduce(f32::max).unwrap_or(0.0)
+}
+
 /// Where the belly's underside rests, less its clearance, over strip centre `y`
 /// (metres left), and by how much its clearance grows measured upright (the secant
 /// of the body's roll): on the line between the two wheel tracks' heights `[left,
 /// right]` at their centre lines (±`tc`), as the rigid body rolls when one track
 /// stands higher than the other; one track's height where the other's is not known,
-/// and the ground plane (z = 0) where neither is, level. The higher track's height
-/// alone, as before, let a 0.5 m block 5-15 cm right of the centre line pass under a
-/// body whose left track climbed a ramp 0.27 m high beside it: the belly there rests
-/// 0.12 m up, not 0.27 m.
+/// and the ground plane (z = 0) where neither is, level.
 fn belly_line(wheels: [Option<f32>; 2], tc: f32, y: f32) -> (f32, f32) {
     match wheels {
         [Some(left), Some(right)] => {
@@ -129,6 +137,29 @@ fn belly_line(wheels: [Option<f32>; 2], tc: f32, y: f32) -> (f32, f32) {
         [Some(v), None] | [None, Some(v)] => (v, 1.0),
         [None, None] => (0.0, 1.0),
     }
+}
+
+/// The lowest the belly's underside passes over strip centre `y` (metres left),
+/// metres: [`belly_line`] plus the clearance upright, but no lower than the lower of
+/// the belly band's own lowest ground in the row (`floor`, seen whole) and the
+/// higher track, plus the clearance; and never higher than the higher track plus the
+/// clearance (the rule before: this one only ever stops more).
+///
+/// Measured from the higher track alone, a 0.5 m block from 15 cm right of the centre
+/// line to 5 cm left of it passed under a body whose left track climbed a ramp 0.27 m
+/// high beside it: the belly passes 0.42 m up over the block's right edge, not 0.59
+/// m. The floor: ground falling away beyond a track's inner edge rolls the body the
+/// other way, and by the rigid body the belly's edge would meet the flat ground it
+/// leaves once that track is some 0.5 m down (a 15° descent 2 m past its toe); the
+/// paper's workcases 9 and 10 call that ground go, and the ground the belly band lies
+/// on is no obstacle standing under it (unless it stands above both tracks, as a
+/// ridge between two trenches: then the tracks' height holds).
+fn belly_underside(wheels: [Option<f32>; 2], tc: f32, y: f32, floor: f32, clearance: f32) -> f32 {
+    let higher = higher_track(wheels);
+    let (line, secant) = belly_line(wheels, tc, y);
+    (line + clearance * secant)
+        .max(floor.min(higher) + clearance)
+        .min(higher + clearance)
 }
 
 /// Whether belly cell (`ix`, `iy`), past the horizon, lies on the surface of the wheel
@@ -209,6 +240,30 @@ pub(crate) fn median(values: &mut [f32]) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_belly_passes_over_the_line_or_the_belly_band_s_floor_never_above_the_higher_track() {
+        let c = 0.32;
+        // By hand, the ramp of the test below: the line over y = 0.05 m is 0.15 m up,
+        // the clearance upright 0.32 · √1.09; the belly band's floor at 0.
+        let u = belly_underside([Some(0.27), Some(0.0)], 0.45, 0.05, 0.0, c);
+        assert!((u - (0.15 + c * 1.09f32.sqrt())).abs() < 1e-6, "{u}");
+        // Ground falling away beyond the left track's inner edge, 0.5 m down: the line
+        // passes under the belly band's flat ground, which holds the belly at its
+        // clearance over it.
+        let u = belly_underside([Some(-0.5), Some(0.0)], 0.45, 0.15, 0.0, c);
+        assert!((u - c).abs() < 1e-6, "{u}");
+        // A ridge between two trenches 0.2 m deep: the tracks' height holds.
+        let u = belly_underside([Some(-0.2), Some(-0.2)], 0.45, 0.0, 0.0, c);
+        assert!((u - (c - 0.2)).abs() < 1e-6, "{u}");
+        // Never above the higher track plus the clearance (however steep the roll).
+        for dy in [0.1f32, 0.5, 1.0, 2.0] {
+            for y in [-0.2f32, 0.0, 0.2] {
+                let u = belly_underside([Some(dy), Some(0.0)], 0.45, y, 0.0, c);
+                assert!(u <= dy + c + 1e-6, "{dy} {y}: {u}");
+            }
+        }
+    }
 
     #[test]
     fn the_belly_rests_on_the_line_between_the_tracks_its_clearance_upright_under_roll() {
