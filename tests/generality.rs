@@ -3617,3 +3617,22 @@ fn ground_falling_away_beside_a_track_rolls_the_body_and_is_no_belly_obstacle() 
         noisy.tilt
     );
 }
+
+#[test]
+fn a_capped_one_track_ramp_whose_outer_strips_start_beside_the_image_is_measured() {
+    // A 320×240 camera 0.68 m high, yawed 8.1° left and rolled 4.9°: its image's
+    // right edge crosses the right track 1.2-1.9 m out. A 24.7° ramp under that
+    // track, capped at 24.5 cm, rises in view in the track's inner strips; its outer
+    // strips are first seen on its top, beside the image, 24.5 cm up, in the rows
+    // where the strips beside them saw the ramp reach that height. That change was
+    // taken for one whose foot is below the image: `unknown` 1.68 m out (`sweep --
+    // widened 100 1213 random 0` #61, and as here drawn as wide as the track). Go,
+    // measured, clean and noisy.
+    let mut c = mounted([0.2623, 0.0148, 0.6773], [4.915, 29.574, 8.103]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.448;
+    let ramp = Element::ramp(1.1883, -0.45, 24.745, 1.021, RIGHT_TRACK).capped(Some(0.2455));
+    let [clean, noisy] = analyse_views(vec![ramp], &c, [None, Some(5)]);
+    assert_go(&clean, 5, 1.1883, 24.745, None);
+    assert_noisy_go(&noisy, 5, 1.1883, 24.745);
+}

@@ -170,105 +170,24 @@ fn ground_beyond(f: &Frame, surface: &[f32], iy: usize, from: usize) -> Option<f
 /// unseen: an `unknown` hazard at the nearest such ground, when two or more strips of
 /// a track show it (10 cm: narrower than a wheel; a boulder whose front is below the
 /// image shows it in a few). The track's edge strips take no part
-/// ([`inner_strips`]).
+/// ([`inner_strips`]), nor does a strip that the image's edge cuts beside a strip
+/// that saw the same ground climbed in view ([`continues_beside`]).
 pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
-    let r = f.cfg.rover.wheel_radius_m as f32;
-    let rise = f.cfg.analysis.rise_threshold_m as f32;
-    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
     for region in [Region::Left, Region::Right] {
         let mut hidden = 0usize;
         let mut nearest = f32::INFINITY;
         for iy in inner_strips(f, region) {
-            let ground = |ix: usize| {
-                let c = f.spec.cell(ix, iy);
-                followed(f, surface, c).map(|z| (f.cells[c].x, z))
-            };
-            let Some(start) = (0..f.spec.nx).find(|&ix| ground(ix).is_some()) else {
+            let Some(start) = unseen_change(f, surface, iy) else {
                 continue;
             };
-            let x0 = f.spec.x_centre(start);
-            let near = || {
-                (start..f.spec.nx)
-                    .map_while(ground)
-                    .take_while(|(x, _)| *x <= x0 + BLIND_FIT_M)
-            };
-            // The line through the stretch's first `len` metres from its `skip`th
-            // cell: slope, height at x0, and whether it holds within rough ground's
-            // spread.
-            let fit = |len: f32, skip: usize| {
-                let points = near().take_while(move |(x, _)| *x <= x0 + len);
-                line_fit(points.skip(skip)).map(|(p, rms)| {
-                    let (k, z0) = (p.a as f32, p.z(f64::from(x0), 0.0) as f32);
-                    (k, z0, rms as f32 <= ROUGH_LINE_RMS_M)
-                })
-            };
-            // Continued back at a passable slope to the origin, it stands there at
-            // most the rise threshold off the rover's ground, on the near side (its
-            // toe ahead of the origin, or so little behind that the ground there is
-            // flat by the onset's measure): a ramp whose toe is below the image.
-            let toe_ahead = |(k, z0, straight): (f32, f32, bool)| {
-                straight
-                    && k * z0 > 0.0
-                    && k.abs() < tan_max
-                    && from_rover_ground((k, z0, x0), 0.0, rise)
-            };
-            // The farthest from the rover's ground the strip gets in that stretch, and
-            // whether it is seen at that ground before (the change is then seen
-            // whole, and the step and slope test judges it).
-            let (mut reach, mut at) = (0.0f32, 0);
-            for (i, (_, z)) in near().enumerate() {
-                if z.abs() > reach.abs() {
-                    (reach, at) = (z, i);
-                }
-            }
-            let from_ground = near().take(at).any(|(_, z)| z.abs() <= ROUGH_SPREAD_M);
-            // A sharp apex's cell reads its mean 2-4 cm under its highest point: there
-            // the highest point counts (a 15.3 cm cone whose foot lies below the
-            // image read 10.7 cm, its highest point 13 cm: `sweep -- natural 200 7324
-            // random 7` #167, a go).
-            if reach > 0.0 {
-                let cell = &f.cells[f.spec.cell(start + at, iy)];
-                reach = sharp_apex(cell, reach).unwrap_or(reach);
-            }
-            // Or seen from a passable ramp's foot: its first cell within the rise
-            // threshold of the rover's ground, and its first BLIND_FOOT_M on one line
-            // whose toe is ahead (with and without that cell). What stands on the ramp
-            // past them is seen whole.
-            let from_foot = near().next().is_some_and(|(_, z)| z.abs() <= rise)
-                && fit(BLIND_FOOT_M, 0).is_some_and(toe_ahead)
-                && fit(BLIND_FOOT_M, 1).is_some_and(toe_ahead);
-            // The first cell is the one the image's bottom edge cuts: it may hold
-            // only part of a face (the top of a step whose foot is not seen), so the
-            // ground from the next cell on must tell the same story. Ground that
-            // lies on one line has no bumps to allow for: its mean level over a
-            // wheel radius from the rover's ground is a change that big (a 12 cm
-            // step whose foot is below the image stands level at 12 cm).
-            let (sum, n) = near()
-                .skip(1)
-                .fold((0.0f32, 0.0f32), |(s, n), (_, z)| (s + z, n + 1.0));
-            let rest = fit(BLIND_FIT_M, 1);
-            let level_over = rest.is_some_and(|(_, _, straight)| straight) && (sum / n).abs() > r;
-            if (reach.abs() <= r + UNSEEN_FOOT_MARGIN_M && !level_over) || from_ground || from_foot
+            if [-1, 1]
+                .into_iter()
+                .any(|d| continues_beside(f, surface, iy, start, d))
             {
                 continue;
             }
-            // A ramp goes on rising behind what hides it: ground seen again past a
-            // shadow that cuts the stretch short, more than a wheel radius and rough
-            // ground's margin under what the stretch rose to, is back at the foot of
-            // what stood there, whatever line its front fits.
-            let seen = near().count();
-            let back_down = reach > 0.0
-                && start + seen < f.spec.nx
-                && ground(start + seen).is_none()
-                && ground_beyond(f, surface, iy, start + seen)
-                    .is_some_and(|z| z < reach - r - UNSEEN_FOOT_MARGIN_M);
-            let ramp = !back_down
-                && fit(BLIND_FIT_M, 0).is_some_and(toe_ahead)
-                && rest.is_none_or(toe_ahead);
-            if !ramp {
-                hidden += 1;
-                nearest = nearest.min(x0);
-            }
+            hidden += 1;
+            nearest = nearest.min(f.spec.x_centre(start));
         }
         if hidden >= 2 {
             verdict.add_hazard(Hazard {
@@ -278,6 +197,126 @@ pub fn blind_rise(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             });
         }
     }
+}
+
+/// [`blind_rise`]'s judgement of inner strip `iy`: the row of its first followed
+/// ground when the change it shows there from the rover's ground is unseen (no ramp
+/// whose toe lies below the image, not seen from the ground), else `None`.
+fn unseen_change(f: &Frame, surface: &[f32], iy: usize) -> Option<usize> {
+    let r = f.cfg.rover.wheel_radius_m as f32;
+    let rise = f.cfg.analysis.rise_threshold_m as f32;
+    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
+    let ground = |ix: usize| {
+        let c = f.spec.cell(ix, iy);
+        followed(f, surface, c).map(|z| (f.cells[c].x, z))
+    };
+    let start = (0..f.spec.nx).find(|&ix| ground(ix).is_some())?;
+    let x0 = f.spec.x_centre(start);
+    let near = || {
+        (start..f.spec.nx)
+            .map_while(ground)
+            .take_while(|(x, _)| *x <= x0 + BLIND_FIT_M)
+    };
+    // The line through the stretch's first `len` metres from its `skip`th
+    // cell: slope, height at x0, and whether it holds within rough ground's
+    // spread.
+    let fit = |len: f32, skip: usize| {
+        let points = near().take_while(move |(x, _)| *x <= x0 + len);
+        line_fit(points.skip(skip)).map(|(p, rms)| {
+            let (k, z0) = (p.a as f32, p.z(f64::from(x0), 0.0) as f32);
+            (k, z0, rms as f32 <= ROUGH_LINE_RMS_M)
+        })
+    };
+    // Continued back at a passable slope to the origin, it stands there at
+    // most the rise threshold off the rover's ground, on the near side (its
+    // toe ahead of the origin, or so little behind that the ground there is
+    // flat by the onset's measure): a ramp whose toe is below the image.
+    let toe_ahead = |(k, z0, straight): (f32, f32, bool)| {
+        straight && k * z0 > 0.0 && k.abs() < tan_max && from_rover_ground((k, z0, x0), 0.0, rise)
+    };
+    // The farthest from the rover's ground the strip gets in that stretch, and
+    // whether it is seen at that ground before (the change is then seen
+    // whole, and the step and slope test judges it).
+    let (mut reach, mut at) = (0.0f32, 0);
+    for (i, (_, z)) in near().enumerate() {
+        if z.abs() > reach.abs() {
+            (reach, at) = (z, i);
+        }
+    }
+    let from_ground = near().take(at).any(|(_, z)| z.abs() <= ROUGH_SPREAD_M);
+    // A sharp apex's cell reads its mean 2-4 cm under its highest point: there
+    // the highest point counts (a 15.3 cm cone whose foot lies below the
+    // image read 10.7 cm, its highest point 13 cm: `sweep -- natural 200 7324
+    // random 7` #167, a go).
+    if reach > 0.0 {
+        let cell = &f.cells[f.spec.cell(start + at, iy)];
+        reach = sharp_apex(cell, reach).unwrap_or(reach);
+    }
+    // Or seen from a passable ramp's foot: its first cell within the rise
+    // threshold of the rover's ground, and its first BLIND_FOOT_M on one line
+    // whose toe is ahead (with and without that cell). What stands on the ramp
+    // past them is seen whole.
+    let from_foot = near().next().is_some_and(|(_, z)| z.abs() <= rise)
+        && fit(BLIND_FOOT_M, 0).is_some_and(toe_ahead)
+        && fit(BLIND_FOOT_M, 1).is_some_and(toe_ahead);
+    // The first cell is the one the image's bottom edge cuts: it may hold
+    // only part of a face (the top of a step whose foot is not seen), so the
+    // ground from the next cell on must tell the same story. Ground that
+    // lies on one line has no bumps to allow for: its mean level over a
+    // wheel radius from the rover's ground is a change that big (a 12 cm
+    // step whose foot is below the image stands level at 12 cm).
+    let (sum, n) = near()
+        .skip(1)
+        .fold((0.0f32, 0.0f32), |(s, n), (_, z)| (s + z, n + 1.0));
+    let rest = fit(BLIND_FIT_M, 1);
+    let level_over = rest.is_some_and(|(_, _, straight)| straight) && (sum / n).abs() > r;
+    if (reach.abs() <= r + UNSEEN_FOOT_MARGIN_M && !level_over) || from_ground || from_foot {
+        return None;
+    }
+    // A ramp goes on rising behind what hides it: ground seen again past a
+    // shadow that cuts the stretch short, more than a wheel radius and rough
+    // ground's margin under what the stretch rose to, is back at the foot of
+    // what stood there, whatever line its front fits.
+    let seen = near().count();
+    let back_down = reach > 0.0
+        && start + seen < f.spec.nx
+        && ground(start + seen).is_none()
+        && ground_beyond(f, surface, iy, start + seen)
+            .is_some_and(|z| z < reach - r - UNSEEN_FOOT_MARGIN_M);
+    let ramp =
+        !back_down && fit(BLIND_FIT_M, 0).is_some_and(toe_ahead) && rest.is_none_or(toe_ahead);
+    (!ramp).then_some(start)
+}
+
+/// Whether inner strip `iy`, first seen at row `start`, continues the ground of the
+/// strip beside it toward `d` (±1): in the row before, its cell lies outside the
+/// image (neither expected on flat ground nor seen) while that neighbour, an inner
+/// strip of the same band, follows ground there (the image's side edge, or a rolled
+/// camera's slanted bottom edge, cuts this strip and not that one); in row `start`
+/// the neighbour lies within rough ground's spread ([`ROUGH_SPREAD_M`]) of this
+/// strip; and the neighbour's own change is seen ([`unseen_change`]), or continues
+/// the next strip's the same way. The climb is then seen whole beside it, and the
+/// step and slope test judges it there. A yawed camera whose image's side edge
+/// crossed a track saw the outer strips of a 24.7° ramp capped at 24.5 cm first on
+/// its top, beside strips that saw it rise to the same height, and the track was
+/// `unknown` (`sweep -- widened 100 1213 random 0` #61, and so drawn as wide as the
+/// track).
+fn continues_beside(f: &Frame, surface: &[f32], iy: usize, start: usize, d: isize) -> bool {
+    let s = f.spec;
+    let Some((prev, j)) = start.checked_sub(1).zip(iy.checked_add_signed(d)) else {
+        return false;
+    };
+    let inner = inner_strips(f, f.region[iy]).any(|k| k == j);
+    let out = s.cell(prev, iy);
+    let ground = |ix: usize, k: usize| followed(f, surface, s.cell(ix, k));
+    inner
+        && !f.expected[out]
+        && !f.seen[out]
+        && ground(prev, j).is_some()
+        && ground(start, iy)
+            .zip(ground(start, j))
+            .is_some_and(|(z, zj)| (z - zj).abs() <= ROUGH_SPREAD_M)
+        && unseen_change(f, surface, j).is_none_or(|sj| continues_beside(f, surface, j, sj, d))
 }
 
 /// A climb the view ends in, steeper than the rover climbs: how high it goes is not
