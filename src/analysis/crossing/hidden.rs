@@ -407,11 +407,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .map(|(_, c)| c.top)
                 .fold(f32::NEG_INFINITY, f32::max);
             let rise = top - foot.1;
-            // A belly strip on what the track beside it climbs: that track's strips
-            // judge the climb.
-            if rise < STEEP_EXIT_SHORT_RISE_M
-                || (region == Region::Belly && on_track_beside(f, iy, h, top))
-            {
+            if rise < STEEP_EXIT_SHORT_RISE_M {
                 continue;
             }
             // A face across the strip within one cut cell, or the climb and the cut
@@ -483,38 +479,6 @@ fn fronts<'c>(f: &Frame, iy: usize, cut: impl Iterator<Item = (usize, &'c Cell)>
             (face || dx > dy.abs(), spread || merged)
         })
 }
-
-/// Whether belly strip `iy`, whose view ends at row `h` with its cut cells' top at
-/// `top` (metres), lies on the surface the wheel track on its side climbs: `top`
-/// stands no more than a wheel radius above the highest top of that track's seen
-/// cells within [`BESIDE_ROWS`] rows before `h` and two after (the rows the cut
-/// cells span). A one-track ramp drawn wider than the track reaches into the belly
-/// band; its strips there rise with the track out of view, and the face along the
-/// ramp's inner edge, inside the strip, spans its cut cells as a front across it
-/// would (a 24.5° ramp whose inner edge lay 15 cm into the belly band was
-/// `unknown`: `sweep -- widened 100 1202 default 0` #28). An obstacle under the
-/// belly stands more than a wheel radius above the track beside it (as the belly
-/// test asks of what rises out of view there), or it is no taller than what the
-/// wheel climbs.
-fn on_track_beside(f: &Frame, iy: usize, h: usize, top: f32) -> bool {
-    let s = f.spec;
-    let side = if s.y_centre(iy) >= 0.0 {
-        Region::Left
-    } else {
-        Region::Right
-    };
-    let beside = f
-        .strips(side)
-        .flat_map(|j| (h.saturating_sub(BESIDE_ROWS)..(h + 3).min(s.nx)).map(move |i| s.cell(i, j)))
-        .filter(|&c| f.seen[c])
-        .map(|c| f.cells[c].top)
-        .fold(f32::NEG_INFINITY, f32::max);
-    top <= beside + f.cfg.rover.wheel_radius_m as f32
-}
-
-/// Rows before a belly strip's view ends in which [`on_track_beside`] looks for the
-/// track beside it (as the belly test borrows a track's height from up to 3 rows).
-const BESIDE_ROWS: usize = 3;
 
 /// Where a strip's view ends (`h`, its first cut cell) on smooth ground, whether the
 /// cut cells show a rise steeper than the rover climbs: the x of the last ground cell
