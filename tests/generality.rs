@@ -3527,7 +3527,7 @@ fn a_block_under_the_belly_beside_a_ramp_wider_than_the_track_is_never_go() {
     // and a 0.8 m block from 2 m out, from 15 cm right of the centre line to 5 cm left
     // of it, rising out of view beside the ramp (0.59 m high there): whatever the
     // ramp's belly strips read, the block is no go, clean and noisy. (The ramp alone
-    // is still `unknown` in the centre on this rig: README, "What still fails".)
+    // is go: `one_track_ramps_reaching_into_the_belly_band_are_go_measured`.)
     let c = Config::default();
     let left = Element::ramp(
         0.704_606_926,
@@ -3542,6 +3542,58 @@ fn a_block_under_the_belly_beside_a_ramp_wider_than_the_track_is_never_go() {
     let block = block_at(2.0, -0.05, 1.0, 0.2, 0.8);
     for v in analyse_views(vec![left, block], &c, [None, Some(5)]) {
         assert_ne!(v.decision, Decision::Go, "{:?}", v.hazards);
+    }
+}
+
+#[test]
+fn one_track_ramps_reaching_into_the_belly_band_are_go_measured() {
+    // `sweep -- widened 100 1202 default 0`, the default rig: ramps under one track
+    // whose inner edge lies 5-13 cm into the belly band. The belly strip the edge
+    // crosses holds the ramp's top on one side of its side face and the flat on the
+    // other, and rises out of view with the track. Read at their mean, its cells
+    // climbed from between the two levels into the ramp's top in the cut cells, a
+    // front across the strip (#21, capped at 0.36 m; #30, noisy); and cut cells
+    // holding only the face's lower part beside the flat, lower than the strip had
+    // already climbed, parted their bands forward as a front's do (#2: its face
+    // grows along the strip as the diagonal ramp rises). Each was `unknown` in the
+    // centre. Go, measured, clean and noisy.
+    let c = Config::default();
+    for ([toe, y, g, alpha], [from_m, to_m], cap, wc, seed) in [
+        (
+            [0.7046, 0.45, 24.4705, -1.947],
+            [0.05085, 1.0605],
+            None,
+            3,
+            1_202_028,
+        ),
+        (
+            [0.8564, -0.45, 16.4375, -21.37],
+            [-0.8029, -0.07158],
+            None,
+            6,
+            1_202_002,
+        ),
+        (
+            [1.1062, 0.45, 15.0756, 1.2608],
+            [0.11476, 1.0496],
+            Some(0.3556),
+            3,
+            1_202_021,
+        ),
+        (
+            [1.2283, -0.45, 16.9621, -25.973],
+            [-1.0576, -0.13117],
+            None,
+            6,
+            1_202_030,
+        ),
+    ] {
+        let extent = Extent::Band { from_m, to_m };
+        let ramp = Element::ramp(toe, y, g, alpha, extent).capped(cap);
+        let [clean, noisy] = analyse_views(vec![ramp], &c, [None, Some(seed)]);
+        let alpha = (alpha.abs() >= 8.0).then_some(alpha);
+        assert_go(&clean, wc, toe, g, alpha);
+        assert_noisy_go(&noisy, wc, toe, g);
     }
 }
 

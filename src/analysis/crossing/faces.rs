@@ -232,8 +232,9 @@ const SPREAD_OFF_VOXELS: f32 = 0.15;
 const SPREAD_MID_SHARE: f32 = 0.2;
 
 /// Least height between a cell's two surfaces for [`ground_beside_face`] to tell
-/// them apart, metres: above rough ground's spread within one cell.
-const FACE_MIN_M: f32 = 0.04;
+/// them apart (and for the test of climbs the view ends in to read a belly cell at its
+/// top), metres: above rough ground's spread within one cell.
+pub(super) const FACE_MIN_M: f32 = 0.04;
 /// Least sideways offset of a face's points from the strip's centre line for
 /// [`ground_beside_face`], voxels: a face hugs the cell's side (0.5), a surface spread
 /// across the cell centres on it (0), whatever the noise.

@@ -2,7 +2,7 @@
 //! whose far side is hidden, a climb whose foot lies before the view, a climb that
 //! leaves the view too steep to be a ramp.
 
-use super::faces::FACE_OFF_VOXELS;
+use super::faces::{FACE_MIN_M, FACE_OFF_VOXELS};
 use super::gaps::from_rover_ground;
 use super::{
     followed, line_fit, sharp_apex, unknown_judged, Frame, Region, ROUGH_LINE_RMS_M,
@@ -358,6 +358,17 @@ fn continues_beside(f: &Frame, surface: &[f32], iy: usize, start: usize, d: isiz
 /// A ramp rising out of view at a passable slope is not this: it stays go, measured.
 /// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
 /// out of view in them.
+///
+/// A belly strip's ground is its cells' mean, but a cell holding two levels (its
+/// points spanning [`FACE_MIN_M`] or more) reads its top: the strip has been seen
+/// that high there. A one-track ramp drawn into the belly band puts its side face
+/// inside a belly strip, the ramp's top on one side, the flat on the other; read at
+/// their mean, which lies between the levels wherever each one's share of the points
+/// puts it, such a strip's cells climbed into the ramp's top in the cut cells, a front
+/// across it, `unknown` (a ramp 11 cm into the band, capped at 0.36 m: `sweep --
+/// widened 100 1202 default 0` #21). The cell of a front seen before the cut, read at
+/// its top, only steepens the climb to it. A cut cell's face or spread counts only
+/// where it rises on past the strip's ground before the cut ([`fronts`]).
 pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let rover = &f.cfg.rover;
     let tan_max = (rover.max_slope_deg as f32).to_radians().tan();
@@ -373,7 +384,13 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             let ground = |ix: usize| {
                 let c = s.cell(ix, iy);
                 let z = if region == Region::Belly {
-                    (f.seen[c] && !f.past[c]).then_some(f.cells[c].z)
+                    let cell = &f.cells[c];
+                    let z = if cell.top - cell.low >= FACE_MIN_M {
+                        cell.top
+                    } else {
+                        cell.z
+                    };
+                    (f.seen[c] && !f.past[c]).then_some(z)
                 } else {
                     followed(f, surface, c)
                 };
@@ -413,7 +430,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             // A face across the strip within one cut cell, or the climb and the cut
             // cells' upper surface on one line steeper than the limit (a face the
             // cell boundary splits, a steep ramp).
-            let (face, spread) = fronts(f, iy, cut.clone());
+            let (face, spread) = fronts(f, iy, (foot.1, before()), cut.clone());
             let climb = before().take_while(|&(x, _)| x > foot.0);
             let points = std::iter::once(foot)
                 .chain(climb)
@@ -469,9 +486,34 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// (`crest` and `foot` both the mean), so it has no orientation of its own; its
 /// points not hugging one side of the cell, it is not along the strip (counted only
 /// where most of the band shows a front).
-fn fronts<'c>(f: &Frame, iy: usize, cut: impl Iterator<Item = (usize, &'c Cell)>) -> (bool, bool) {
+///
+/// Either cell's top must stand [`STEEP_EXIT_SHORT_RISE_M`] over the climb's `foot`
+/// (metres) and rise on past the strip's ground before the cut (`before`, from
+/// `h − 1` back, as [`steep_exit`] reads it): [`FRONT_RISING_M`] over its last cell
+/// carried on at the slope its last [`FRONT_LINE_M`] climb (none if it falls, the
+/// rover's limit at most) to the top's x. A front the view ends on stands over the
+/// ground before it; a ramp's side face inside a belly strip, seen beside the flat
+/// only up to where the image's top edge cuts it, stands under the ramp's top the
+/// strip already climbed, and its upper points lie farther on as the ramp rises, so
+/// its bands part forward (`sweep -- widened 100 1202 default 0` #2: `unknown`).
+fn fronts<'c>(
+    f: &Frame,
+    iy: usize,
+    (foot, before): (f32, impl Iterator<Item = (f32, f32)> + Clone),
+    cut: impl Iterator<Item = (usize, &'c Cell)>,
+) -> (bool, bool) {
     let y_mid = f.spec.y_centre(iy);
-    cut.filter(|(_, c)| c.top - c.low >= STEEP_EXIT_RISE_M)
+    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
+    let Some(last) = before.clone().next() else {
+        return (false, false);
+    };
+    let recent = before.take_while(|&(x, _)| last.0 - x <= FRONT_LINE_M);
+    let climbs = line_fit(recent).map_or(0.0, |(p, _)| (p.a as f32).clamp(0.0, tan_max));
+    let rises = |c: &Cell| {
+        c.top >= foot + STEEP_EXIT_SHORT_RISE_M
+            && c.top >= last.1 + FRONT_RISING_M + climbs * (c.top_xy[0] - last.0).max(0.0)
+    };
+    cut.filter(|(_, c)| c.top - c.low >= STEEP_EXIT_RISE_M && rises(c))
         .fold((false, false), |(face, spread), (_, c)| {
             let (dx, dy) = (c.crest_xy[0] - c.foot_xy[0], c.crest_xy[1] - c.foot_xy[1]);
             let merged =
@@ -553,6 +595,9 @@ const SMOOTH_GROUND_CELLS: usize = 4;
 /// Most ground cells of a front that [`bends_up`] looks for between the smooth
 /// ground's line and the cut: 10 cm, a rock's or a mound's front.
 const FRONT_CELLS: usize = 2;
+/// How far back from a strip's last ground cell before the cut [`steep_exit`] fits
+/// the line the strip climbs there, metres: three cells.
+const FRONT_LINE_M: f32 = 0.15;
 /// Least height of a cut cell's top over the tops of the front's cells before the cut
 /// for [`bends_up`], metres: the front still rises where the view ends.
 const FRONT_RISING_M: f32 = 0.01;
