@@ -445,6 +445,10 @@ fn block_at(x_m: f64, y_m: f64, length_m: f64, width_m: f64, height_m: f64) -> E
 /// principal point `[fx, fy, cx, cy]` (pixels), seeing from `min_range_m` (metres).
 fn d435_like(mut c: Config, [fx, fy, cx, cy]: [f64; 4], min_range_m: f64) -> Config {
     (c.camera.width, c.camera.height) = (848, 480);
+    // The intrinsics place the rays; the fields of view, kept consistent with them,
+    // give the noise model its focal length (pixels) for the depth noise.
+    c.camera.hfov_deg = 2.0 * (424.0 / fx).atan().to_degrees();
+    c.camera.vfov_deg = 2.0 * (240.0 / fy).atan().to_degrees();
     (c.camera.fx, c.camera.fy) = (Some(fx), Some(fy));
     (c.camera.cx, c.camera.cy) = (Some(cx), Some(cy));
     c.camera.min_range_m = min_range_m;
