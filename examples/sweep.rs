@@ -320,21 +320,18 @@ fn draw(
                 None => families::Family::ALL[i % families::Family::ALL.len()],
             };
             let mut d = families::draw(rng, fam, rig);
-            if mode == "natural" {
-                // Its own stream, so the scenes are `families`' scenes, restyled.
+            type Restyle = fn(&mut ChaCha8Rng, families::Draw) -> families::Draw;
+            let restyle: Option<(u64, Restyle)> = match mode {
+                "natural" => Some((1, families::restyled)),
+                "bevelled" => Some((2, families::bevelled)),
+                "widened" => Some((3, families::widened)),
+                _ => None,
+            };
+            if let Some((stream, restyle)) = restyle {
+                // Its own stream, so the scenes are `families`' scenes, drawn anew.
                 let mut style = rng.clone();
-                style.set_stream(1);
-                d = families::restyled(&mut style, d);
-            }
-            if mode == "bevelled" {
-                let mut style = rng.clone();
-                style.set_stream(2);
-                d = families::bevelled(&mut style, d);
-            }
-            if mode == "widened" {
-                let mut style = rng.clone();
-                style.set_stream(3);
-                d = families::widened(&mut style, d);
+                style.set_stream(stream);
+                d = restyle(&mut style, d);
             }
             (d.terrain, d.expect, d.rig.config, d.tolerance)
         }
