@@ -430,7 +430,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             // A face across the strip within one cut cell, or the climb and the cut
             // cells' upper surface on one line steeper than the limit (a face the
             // cell boundary splits, a steep ramp).
-            let (face, spread) = fronts(f, iy, (foot.1, before()), cut.clone());
+            let (face, spread) = fronts(f, iy, (foot.1, before()), tan_max, cut.clone());
             let climb = before().take_while(|&(x, _)| x > foot.0);
             let points = std::iter::once(foot)
                 .chain(climb)
@@ -491,7 +491,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// (metres) and rise on past the strip's ground before the cut (`before`, from
 /// `h − 1` back, as [`steep_exit`] reads it): [`FRONT_RISING_M`] over its last cell
 /// carried on at the slope its last [`FRONT_LINE_M`] climb (none if it falls, the
-/// rover's limit at most) to the top's x. A front the view ends on stands over the
+/// rover's limit `tan_max` at most) to the top's x. A front the view ends on stands over the
 /// ground before it; a ramp's side face inside a belly strip, seen beside the flat
 /// only up to where the image's top edge cuts it, stands under the ramp's top the
 /// strip already climbed, and its upper points lie farther on as the ramp rises, so
@@ -500,10 +500,10 @@ fn fronts<'c>(
     f: &Frame,
     iy: usize,
     (foot, before): (f32, impl Iterator<Item = (f32, f32)> + Clone),
+    tan_max: f32,
     cut: impl Iterator<Item = (usize, &'c Cell)>,
 ) -> (bool, bool) {
     let y_mid = f.spec.y_centre(iy);
-    let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
     let Some(last) = before.clone().next() else {
         return (false, false);
     };
