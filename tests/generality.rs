@@ -410,6 +410,52 @@ fn a_tall_rock_whose_foot_hides_behind_a_lower_one_is_no_low_step() {
     go_low_not_tall(field, [0.08, 0.1503], &c, 5_501_040, step);
 }
 
+#[test]
+fn a_tall_rock_past_a_lower_one_whose_shadow_hides_the_dip_between_stops() {
+    // Rocks on rough ground under a D435-like camera 0.75 m high, pitched 15.9°,
+    // rolled −8.9° (`sweep -- bevelled 100 2606 random` #18): in the right track a
+    // 15.3 cm rock stands 6 cm past an 8.3 cm one, the dip between them in the smaller
+    // one's shadow. Within a wheelbase before its hidden far side the strips rose only
+    // 7 cm, from the smaller rock's top, and the verdict was go.
+    let c = d435_like(
+        mounted([0.0783, 0.0199, 0.7484], [-8.9274, 15.8629, -4.7348]),
+        [421.82, 420.13, 443.35, 237.95],
+        0.3949,
+    );
+    let field = |tall: f64| {
+        vec![
+            Element::Rough {
+                amplitude_m: 0.025,
+                correlation_m: 0.170_835_6,
+                seed: 349_021_839_419_151_402,
+            },
+            rock(1.5012, 0.2717, 0.1400, 0.0728),
+            rock(2.5434, -0.3579, 0.0731, 0.0432),
+            rock(1.0415, 0.3705, 0.0932, 0.0472),
+            rock(2.0447, -0.4910, 0.1345, 0.0684),
+            rock(1.4428, -0.3649, 0.1661, 0.0831),
+            rock(1.8562, -0.3586, 0.1883, tall),
+        ]
+    };
+    // The same rock 8 cm high the wheel climbs.
+    let step = (Decision::Stop, Side::Right, Some(HazardKind::Step));
+    go_low_not_tall(field, [0.08, 0.1531], &c, 2_606_018, step);
+    // The step stands past the smaller rock's apex (1.44 m), where its shadow may
+    // hide the dip, and no farther than the tall rock's foot (1.668 m).
+    for v in analyse_views(field(0.1531), &c, [None, Some(2_606_018)]) {
+        let at = v
+            .hazards
+            .iter()
+            .find(|h| h.side == Side::Right)
+            .map(|h| h.distance_m);
+        assert!(
+            at.is_some_and(|d| (1.44..=1.668).contains(&d)),
+            "{:?}",
+            v.hazards
+        );
+    }
+}
+
 /// A 320×240 camera 0.9 m high pitched 20°, offset and yawed 9°: past 2.8 m its rows
 /// fall about one per cell on ground falling away at 12°.
 fn coarse_rig() -> Config {
