@@ -27,7 +27,8 @@ use crate::verdict::{Hazard, HazardKind, Verdict};
 /// the mean of a cell the image's top edge cuts just past it: a lower bound), the
 /// climb is an obstacle higher than a wheel radius with its far side hidden: a step
 /// at its foot (the last cell of the climb at most half a wheel radius above its
-/// lowest).
+/// lowest). A climb across a shadow is measured from a wheelbase before the shadow
+/// too, its foot no nearer than the shadow ([`climb_start`]).
 ///
 /// A diagonal ramp (26° across the rover, 25° steep) moves the strips beside by at
 /// most 6 cm over that lateral distance, well under a wheel radius. The track's two
