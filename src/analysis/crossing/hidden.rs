@@ -28,7 +28,7 @@ use crate::verdict::{Hazard, HazardKind, Verdict};
 /// climb is an obstacle higher than a wheel radius with its far side hidden: a step
 /// at its foot (the last cell of the climb at most half a wheel radius above its
 /// lowest). A climb across a shadow is measured from a wheelbase before the shadow
-/// too, its foot no nearer than the shadow ([`climb_start`]).
+/// too, its foot no nearer than the shadow's near edge ([`climb_start`]).
 ///
 /// A diagonal ramp (26° across the rover, 25° steep) moves the strips beside by at
 /// most 6 cm over that lateral distance, well under a wheel radius. The track's two
@@ -90,9 +90,14 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     .filter(|&(_, z)| z <= base + 0.5 * r)
                     .map(|(jx, _)| jx)
                     .max()
-                    .unwrap_or(ix)
-                    .max(shadow.unwrap_or(0));
-                let foot_m = f.spec.x_centre(foot).max(0.0);
+                    .unwrap_or(ix);
+                // Past the ground seen low, a shadow: the hidden dip may begin at its
+                // near edge.
+                let foot_m = match shadow.filter(|&jx| jx > foot) {
+                    Some(jx) => f.spec.x_centre(jx) - 0.5 * f.spec.voxel_m,
+                    None => f.spec.x_centre(foot),
+                }
+                .max(0.0);
                 if below < HIDDEN_TOP_MIN_CELLS || 3 * below < all {
                     let past = ground_beyond(f, surface, iy, ix + 1);
                     if past.is_some_and(|z| z < top - r - UNSEEN_FOOT_MARGIN_M) {
@@ -128,7 +133,7 @@ pub fn hidden_tops(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
 /// smaller one's shadow, rose only 7 cm over the smaller one's top within a
 /// wheelbase, and went (`sweep -- bevelled 100 2606 random` #18, clean and noisy).
 /// Measured from the ground before the shadow it stands as high as alone, and its
-/// foot is no nearer than the shadow, where the hidden dip may begin.
+/// foot is no nearer than the shadow's near edge, where the hidden dip may begin.
 fn climb_start(f: &Frame, iy: usize, ix: usize, wheelbase: f32) -> (usize, Option<usize>) {
     let back = |x: f32| {
         (0..=ix)
