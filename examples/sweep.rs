@@ -41,7 +41,8 @@
 //! noisy=...`), so that errors in distance and gradient can be tallied over frames
 //! that pass as well as those that fail. A go where a stop was due also prints, for
 //! each stone or rock drawn 12 cm or higher, how high its apex stands over the ground
-//! before it (`RELIEF #N ...`, sampled from the height field).
+//! before it (`RELIEF #N ...`, sampled from the height field); a stop where a go was
+//! due prints it for every stone and rock.
 
 #[path = "../tests/common/second_renderer.rs"]
 mod second;
@@ -151,10 +152,16 @@ fn main() {
                     "FAIL #{i} noisy={noisy} {:?} mount={:?} cam={}x{}: {fails:?} hazards={:?} feature={:?}",
                     terrain.elements, config.mount, config.camera.width, config.camera.height, v.hazards, v.feature
                 );
-                if v.decision == Decision::Go && want.verdict != Decision::Go {
-                    for r in reliefs(&terrain) {
-                        println!("RELIEF #{i} noisy={noisy} {r}");
-                    }
+                // A false go: the stones that should have stopped it; a false stop:
+                // every stone, any of which may stand over a wheel radius above the
+                // dip before it.
+                let least = match (v.decision, want.verdict) {
+                    (Decision::Go, w) if w != Decision::Go => Some(0.12),
+                    (Decision::Stop, Decision::Go) => Some(0.0),
+                    _ => None,
+                };
+                for r in least.map_or_else(Vec::new, |m| reliefs(&terrain, m)) {
+                    println!("RELIEF #{i} noisy={noisy} {r}");
                 }
             }
         }
@@ -194,12 +201,14 @@ fn unseen_at_grazing(mode: &str, want: &Expectation, terrain: &Terrain, config: 
     }
 }
 
-/// For a false go's triage: each stone and rock of `terrain` drawn 12 cm or higher,
-/// with how high its apex stands over the ground the wheel comes from, sampled from
-/// the height field (a hand calculation, not the analysis): its apex, and the mean
-/// over the 0.3 m before its foot along x. Rough ground dips under some stones, and a
-/// stone drawn 15 cm high then stands a wheel radius or little more over that ground.
-fn reliefs(terrain: &Terrain) -> Vec<String> {
+/// For a false go's or a false stop's triage: each stone and rock of `terrain` drawn
+/// `least_m` high or higher (metres), with how high its apex stands over the ground
+/// the wheel comes from, sampled from the height field (a hand calculation, not the
+/// analysis): its apex, and the mean over the 0.3 m before its foot along x. Rough
+/// ground dips under some stones, and a stone drawn 15 cm high then stands a wheel
+/// radius or little more over that ground; one drawn 9 cm high on a bump past a dip
+/// may stand more.
+fn reliefs(terrain: &Terrain, least_m: f64) -> Vec<String> {
     terrain
         .elements
         .iter()
@@ -216,7 +225,7 @@ fn reliefs(terrain: &Terrain) -> Vec<String> {
                 y_m,
                 radius_m,
                 height_m,
-            } if height_m >= 0.12 => {
+            } if height_m >= least_m => {
                 let apex = terrain.height(x_m, y_m);
                 let before = (0..7)
                     .map(|k| terrain.height(x_m - radius_m - 0.05 * f64::from(k), y_m))
