@@ -3729,3 +3729,29 @@ fn a_capped_one_track_ramp_whose_outer_strips_start_beside_the_image_is_measured
     assert_go(&clean, 5, 1.1883, 24.745, None);
     assert_noisy_go(&noisy, 5, 1.1883, 24.745);
 }
+
+#[test]
+fn a_capped_one_track_ramp_whose_outer_strips_leave_the_image_raised_is_measured() {
+    // A camera 0.88 m high pitched 44.8°, yawed 9.5° right and rolled −7.4°: its
+    // image's left edge crosses the left track. A 22.7° diagonal ramp under that
+    // track, capped at 27 cm, rises in view in the track's inner strips. Two outer
+    // strips are first seen on its top, 1.28 and 1.48 m out; in the rows before, the
+    // ground under the ramp lies inside the image, but the ramp's top, 26-27 cm up,
+    // lies beside it. That was taken for a change whose foot is hidden: `unknown`
+    // 1.28 m out (`sweep -- families 100 2901 random` #77, clean and noisy). Go,
+    // measured, clean and noisy; the same rig still stops at a ramp too steep to
+    // climb and at a block as high as the cap.
+    let mut c = mounted([0.2134, 0.0760, 0.8841], [-7.3765, 44.8101, -9.5432]);
+    c.camera.min_range_m = 0.3607;
+    let ramp =
+        |gradient| Element::ramp(0.5709, 0.45, gradient, -16.2849, LEFT_TRACK).capped(Some(0.2711));
+    let [clean, noisy] = analyse_views(vec![ramp(22.6772)], &c, [None, Some(77)]);
+    assert_go(&clean, 4, 0.5709, 22.6772, None);
+    assert_noisy_go(&noisy, 4, 0.5709, 22.6772);
+    let block = block_at(0.9, 0.45, 2.5, 0.5, 0.2711);
+    for scene in [vec![ramp(36.0)], vec![block]] {
+        for v in analyse_views(scene, &c, [None, Some(77)]) {
+            assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        }
+    }
+}

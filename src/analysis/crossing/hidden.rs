@@ -8,7 +8,7 @@ use super::{
     followed, line_fit, sharp_apex, unknown_judged, Frame, Region, ROUGH_LINE_RMS_M,
     ROUGH_SPREAD_M, UNSEEN_FOOT_MARGIN_M,
 };
-use crate::analysis::low_step;
+use crate::analysis::{low_step, visibility};
 use crate::grid::Cell;
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
@@ -318,10 +318,11 @@ fn unseen_change(f: &Frame, surface: &[f32], iy: usize) -> Option<usize> {
 }
 
 /// Whether inner strip `iy`, first seen at row `start`, continues the ground of the
-/// strip beside it toward `d` (±1): in the row before, its cell lies outside the
-/// image (neither expected on flat ground nor seen) while that neighbour, an inner
-/// strip of the same band, follows ground there (the image's side edge, or a rolled
-/// camera's slanted bottom edge, cuts this strip and not that one); in row `start`
+/// strip beside it toward `d` (±1): in the row before, its cell is not seen and lies
+/// outside the image, on flat ground or at the height of the ground that neighbour,
+/// an inner strip of the same band, follows there (the image's side edge, or a rolled
+/// camera's slanted bottom edge, cuts this strip and not that one; a raised surface
+/// leaves the image where the ground under it would not); in row `start`
 /// the neighbour lies within rough ground's spread ([`ROUGH_SPREAD_M`]) of this
 /// strip; and the neighbour's own change is seen ([`unseen_change`]), or continues
 /// the next strip's the same way. The climb is then seen whole beside it, and the
@@ -329,7 +330,9 @@ fn unseen_change(f: &Frame, surface: &[f32], iy: usize) -> Option<usize> {
 /// crossed a track saw the outer strips of a 24.7° ramp capped at 24.5 cm first on
 /// its top, beside strips that saw it rise to the same height, and the track was
 /// `unknown` (`sweep -- widened 100 1213 random 0` #61, and so drawn as wide as the
-/// track).
+/// track). A camera pitched 44.8° and yawed 9.5° saw the outer strips of a 22.7°
+/// ramp capped at 27 cm first on its top, where the ground under the ramp was in the
+/// image but the ramp's top was not (`sweep -- families 100 2901 random` #77).
 fn continues_beside(f: &Frame, surface: &[f32], iy: usize, start: usize, d: isize) -> bool {
     let s = f.spec;
     let Some((prev, j)) = start.checked_sub(1).zip(iy.checked_add_signed(d)) else {
@@ -338,10 +341,11 @@ fn continues_beside(f: &Frame, surface: &[f32], iy: usize, start: usize, d: isiz
     let inner = inner_strips(f, f.region[iy]).any(|k| k == j);
     let out = s.cell(prev, iy);
     let ground = |ix: usize, k: usize| followed(f, surface, s.cell(ix, k));
+    let outside =
+        |z: f32| !f.expected[out] || !visibility::in_view(s, f.projector, f.cfg, prev, iy, z);
     inner
-        && !f.expected[out]
         && !f.seen[out]
-        && ground(prev, j).is_some()
+        && ground(prev, j).is_some_and(outside)
         && ground(start, iy)
             .zip(ground(start, j))
             .is_some_and(|(z, zj)| (z - zj).abs() <= ROUGH_SPREAD_M)
