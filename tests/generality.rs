@@ -3755,3 +3755,73 @@ fn a_capped_one_track_ramp_whose_outer_strips_leave_the_image_raised_is_measured
         }
     }
 }
+
+#[test]
+fn a_cone_whose_apex_cell_is_followed_by_a_glimpse_of_its_far_side_stops() {
+    // A D435-like camera 0.58 m high, pitched 32°, over lumpy ground with stones
+    // (`sweep -- natural 200 2608 random 7` #96, clean and noisy, a go). A 15.4 cm
+    // cone in the left track stands on a 1 cm bump, its apex 13.1 cm over the ground
+    // before it. Its apex lies at the far edge of one cell, whose mean reads 11.5 cm
+    // and whose highest point 14.2 cm; the next cell holds three points of the cone's
+    // far side, 12.9 cm up, over its mean but under its highest point, and the cone's
+    // shadow lies past it. That cell made the apex cell no top, and the strip climbed
+    // a wheel radius from the bump before the cone. It is a glimpse of the far side:
+    // the apex cell's highest point counts, 12.4 cm over the lowest cell before it,
+    // more than a wheel radius and 1 cm. 8 cm high, the cone is climbed.
+    let c = d435_like(
+        mounted([0.1112, 0.0144, 0.5774], [2.4638, 32.2410, -5.0803]),
+        [434.276, 435.013, 408.220, 231.137],
+        0.3084,
+    );
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.136_371_241,
+                seed: 1_495_898_180_130_738_981,
+            },
+            Element::stone(1.3231, 0.6077, 0.0720, 0.0579, StoneShape::Cone),
+            Element::stone(0.7082, -0.3108, 0.1287, 0.0748, StoneShape::Boulder),
+            Element::stone(1.8460, 0.3127, 0.1480, 0.0812, StoneShape::Cone),
+            Element::stone(1.6978, 0.5209, 0.1683, height_m, StoneShape::Cone),
+        ]
+    };
+    go_low_not_tall(
+        field,
+        [0.08, 0.1537],
+        &c,
+        2_608_096,
+        (Decision::Stop, Side::Left, None),
+    );
+}
+
+#[test]
+fn a_low_cone_glimpsed_past_its_apex_far_out_is_climbed() {
+    // A Kinect v2 0.81 m high, pitched 44°, over lumpy ground with stones (`sweep --
+    // natural 100 2913 random 6` #86). A 7.1 cm cone in the left track 2.56 m out
+    // stands 11 cm over the ground before it; past its apex cell the next cell
+    // glimpses its far side. With depth noise the apex cell's highest point stood
+    // 11.7 cm over the lowest cell before it: a wheel radius, within the 1 cm margin
+    // of a top not seen whole, and a `step` while the glimpse's apex counted over a
+    // wheel radius alone. Go, clean and noisy; 15 cm high it stops.
+    let mut c = kinect_v2(mounted(
+        [0.2032, 0.0159, 0.8099],
+        [3.1650, 44.2146, -4.2300],
+    ));
+    c.camera.min_range_m = 0.3245;
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.169_493_913,
+                seed: 3_607_088_027_729_138_554,
+            },
+            Element::stone(1.3927, 0.4464, 0.1110, 0.0695, StoneShape::Boulder),
+            Element::stone(2.0165, 0.3544, 0.1606, 0.0808, StoneShape::Mound),
+            Element::stone(0.7416, -0.3280, 0.0680, 0.0546, StoneShape::Boulder),
+            Element::stone(2.2433, -0.5937, 0.1079, 0.0739, StoneShape::Mound),
+            Element::stone(2.5558, 0.3557, 0.0917, height_m, StoneShape::Cone),
+        ]
+    };
+    go_low_stop_tall(field, 0.0714, &c, 2_913_086, (Side::Left, None));
+}

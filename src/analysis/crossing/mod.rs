@@ -209,6 +209,16 @@ fn sharp_top_steps(
 /// Only a top more than a wheel radius over a cell within a step's reach before it
 /// counts (the rest cannot make a step). Returns whether the strip has any.
 ///
+/// The cell just after may also be a *glimpse* of the far side: over the cell's mean
+/// but with a highest point under the cell's, and the cell after it in the shadow. A
+/// cone whose apex lies at a cell's far edge shows a few points of its far side in
+/// the next cell, which read over the apex cell's mean (a 15.4 cm cone whose apex
+/// stood 13.1 cm over the ground before it went: `sweep -- natural 200 2608 random
+/// 7` #96). Such a top's far side is hidden, and it counts over a wheel radius and
+/// [`UNSEEN_FOOT_MARGIN_M`], the margin of the other tops not seen whole (a 7 cm cone
+/// 2.5 m out, its noisy highest point 11.7 cm over a dip before it, stopped the
+/// rover: `sweep -- natural 100 2913 random 6` #86).
+///
 /// The other cells keep their means: rough ground's highest points stand 1-2 cm over
 /// them (more with depth noise), and a face along the strip (a ramp's side, a
 /// descent's wall) lifts a cell's highest point but leaves the cells beside it across
@@ -223,20 +233,28 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
     let mut any = false;
     for k in 1..strip.len().saturating_sub(1) {
         let (before, here, after) = (strip[k - 1], strip[k], strip[k + 1]);
-        // The cell just past it in its shadow: hidden ground lower than the top (as
-        // high, it would stand in the line of sight over the top, and be seen).
-        let shadow = after.ix > here.ix + 1 && f.shadowed[s.cell(here.ix + 1, iy)];
-        let along = before.z < here.z
-            && before.ix + 1 == here.ix
-            && ((after.ix == here.ix + 1 && after.z <= here.z) || shadow)
-            && !(before.past || here.past || after.past);
-        if !along {
-            continue;
-        }
         let cell = &f.cells[s.cell(here.ix, iy)];
         let Some(peak) = sharp_apex(cell, here.z) else {
             continue;
         };
+        // The cell just past it in its shadow: hidden ground lower than the top (as
+        // high, it would stand in the line of sight over the top, and be seen).
+        let shadow = after.ix > here.ix + 1 && f.shadowed[s.cell(here.ix + 1, iy)];
+        // Or the cell past that one, and the one between a glimpse of the far side.
+        let glimpse = after.ix == here.ix + 1
+            && after.z > here.z
+            && f.cells[s.cell(after.ix, iy)].peak <= peak
+            && strip.get(k + 2).is_none_or(|c| c.ix > after.ix + 1)
+            && after.ix + 1 < s.nx
+            && f.shadowed[s.cell(after.ix + 1, iy)];
+        let under = |c: &StripCell| c.z <= here.z || (glimpse && c.ix == after.ix);
+        let along = before.z < here.z
+            && before.ix + 1 == here.ix
+            && ((after.ix == here.ix + 1 && under(&after)) || shadow)
+            && !(before.past || here.past || after.past);
+        if !along {
+            continue;
+        }
         let not_under = |j: usize| {
             let c = s.cell(here.ix, j);
             f.seen[c] && f.cells[c].crest <= cell.crest
@@ -253,8 +271,11 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
         let top = strip[k + 1..]
             .iter()
             .take_while(|c| c.x - here.x <= r)
-            .all(|c| c.z <= here.z);
-        if top && peak - floor > r && not_under(iy - 1) && not_under(iy + 1) {
+            .all(under);
+        // A glimpse's apex has its far side hidden past it: it counts, as the other
+        // tops the view does not show whole, over a wheel radius and a margin.
+        let least = if glimpse { r + UNSEEN_FOOT_MARGIN_M } else { r };
+        if top && peak - floor > least && not_under(iy - 1) && not_under(iy + 1) {
             strip[k].peak = peak;
             any = true;
         }
