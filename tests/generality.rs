@@ -3825,3 +3825,40 @@ fn a_low_cone_glimpsed_past_its_apex_far_out_is_climbed() {
     };
     go_low_stop_tall(field, 0.0714, &c, 2_913_086, (Side::Left, None));
 }
+
+#[test]
+fn a_cone_whose_apex_cell_has_its_shadow_beside_it_stops() {
+    // A 320×240 camera 0.55 m high, pitched 26.6°, over lumpy ground with stones
+    // (`sweep -- natural 200 2921 random 7` #190, clean, a go). A 16.9 cm cone in
+    // the left track stands 13.7 cm over the ground before it. Its apex cell reads
+    // 12.2 cm by its mean and 14.4 cm at its highest point, 13.5 cm over the lowest
+    // cell before it; the cell beside it across, on the cone's far flank, lies in the
+    // cone's shadow. A sharp top asked both cells beside it to be seen, and no
+    // higher. A shadowed one hides ground under the line of sight over what casts
+    // it: the top counts. 8 cm high, the cone is climbed.
+    let c = qvga(
+        mounted([0.0073, -0.0179, 0.5454], [-4.5110, 26.5983, 3.1854]),
+        0.3278,
+    );
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.121_854_769,
+                seed: 504_179_975_047_345_081,
+            },
+            Element::stone(2.0395, 0.5306, 0.1434, 0.0773, StoneShape::Cap),
+            Element::stone(1.3343, 0.5971, 0.0990, 0.0602, StoneShape::Boulder),
+            Element::stone(0.9914, 0.2948, 0.0721, 0.0409, StoneShape::Boulder),
+            Element::stone(2.7463, -0.5254, 0.0836, 0.0472, StoneShape::Mound),
+            Element::stone(1.1039, 0.3867, 0.1576, height_m, StoneShape::Cone),
+        ]
+    };
+    go_low_not_tall(
+        field,
+        [0.08, 0.1692],
+        &c,
+        2_921_190,
+        (Decision::Stop, Side::Left, None),
+    );
+}

@@ -199,7 +199,9 @@ fn sharp_top_steps(
 /// and than the cell just after it (or with that cell in its shadow: a 15.4 cm cone
 /// whose far side was hidden went, `sweep -- natural 200 7334 random 7` #11), than
 /// anything within a wheel radius past it, and at least as high as the
-/// seen cells beside it across, and whose mean lies more than rough ground's spread
+/// seen cells beside it across (or with such a cell in a shadow: a 16.9 cm cone whose
+/// apex cell had its far flank beside it hidden went, `sweep -- natural 200 2921
+/// random 7` #190), and whose mean lies more than rough ground's spread
 /// ([`ROUGH_SPREAD_M`]) under its top voxel's highest point ([`Cell::peak`]), that
 /// cell's `peak` becomes that point. Over a sharp apex (a cone, a narrow mound) the
 /// surface's mean lies 2-4 cm under it; a rounded or flat top (a rock, a boulder) it
@@ -255,9 +257,11 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
         if !along {
             continue;
         }
+        // A cell beside it in a shadow hides ground under the line of sight over what
+        // casts it, no higher than a seen top: the cone's own far flank.
         let not_under = |j: usize| {
             let c = s.cell(here.ix, j);
-            f.seen[c] && f.cells[c].crest <= cell.crest
+            (f.seen[c] && f.cells[c].crest <= cell.crest) || (!f.seen[c] && f.shadowed[c])
         };
         // The lowest cell a step to it can rise from: what rises no more than a
         // wheel radius over it cannot make one (the rises-only pass's reach).
