@@ -152,15 +152,7 @@ fn main() {
                     "FAIL #{i} noisy={noisy} {:?} mount={:?} cam={}x{}: {fails:?} hazards={:?} feature={:?}",
                     terrain.elements, config.mount, config.camera.width, config.camera.height, v.hazards, v.feature
                 );
-                // A false go: the stones that should have stopped it; a false stop:
-                // every stone, any of which may stand over a wheel radius above the
-                // dip before it.
-                let least = match (v.decision, want.verdict) {
-                    (Decision::Go, w) if w != Decision::Go => Some(0.12),
-                    (Decision::Stop, Decision::Go) => Some(0.0),
-                    _ => None,
-                };
-                for r in least.map_or_else(Vec::new, |m| reliefs(&terrain, m)) {
+                for r in triage_reliefs(&terrain, v.decision, want.verdict) {
                     println!("RELIEF #{i} noisy={noisy} {r}");
                 }
             }
@@ -198,6 +190,18 @@ fn unseen_at_grazing(mode: &str, want: &Expectation, terrain: &Terrain, config: 
             grazing(&planes_of(terrain), config)
         }
         _ => false,
+    }
+}
+
+/// [`reliefs`] for a failed frame that decided `got` where `want` was due: for a false
+/// go the stones that should have stopped it (12 cm or higher); for a false stop
+/// every stone, any of which may stand over a wheel radius above the dip before it;
+/// otherwise none.
+fn triage_reliefs(terrain: &Terrain, got: Decision, want: Decision) -> Vec<String> {
+    match (got, want) {
+        (Decision::Go, w) if w != Decision::Go => reliefs(terrain, 0.12),
+        (Decision::Stop, Decision::Go) => reliefs(terrain, 0.0),
+        _ => Vec::new(),
     }
 }
 

@@ -235,26 +235,32 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
     let mut any = false;
     for k in 1..strip.len().saturating_sub(1) {
         let (before, here, after) = (strip[k - 1], strip[k], strip[k + 1]);
+        let rises = before.z < here.z
+            && before.ix + 1 == here.ix
+            && !(before.past || here.past || after.past);
+        if !rises {
+            continue;
+        }
         let cell = &f.cells[s.cell(here.ix, iy)];
         let Some(peak) = sharp_apex(cell, here.z) else {
             continue;
         };
-        // The cell just past it in its shadow: hidden ground lower than the top (as
-        // high, it would stand in the line of sight over the top, and be seen).
-        let shadow = after.ix > here.ix + 1 && f.shadowed[s.cell(here.ix + 1, iy)];
-        // Or the cell past that one, and the one between a glimpse of the far side.
+        // The row just past the strip's `j`th cell unseen and in a shadow: hidden
+        // ground lower than the top (as high, it would stand in the line of sight
+        // over the top, and be seen).
+        let shadow_past = |j: usize| {
+            let ix = strip[j].ix + 1;
+            strip.get(j + 1).is_none_or(|c| c.ix > ix) && ix < s.nx && f.shadowed[s.cell(ix, iy)]
+        };
+        // The cell just past it in its shadow, or the cell past that one, and the one
+        // between a glimpse of the far side.
+        let shadow = shadow_past(k);
         let glimpse = after.ix == here.ix + 1
             && after.z > here.z
             && f.cells[s.cell(after.ix, iy)].peak <= peak
-            && strip.get(k + 2).is_none_or(|c| c.ix > after.ix + 1)
-            && after.ix + 1 < s.nx
-            && f.shadowed[s.cell(after.ix + 1, iy)];
+            && shadow_past(k + 1);
         let under = |c: &StripCell| c.z <= here.z || (glimpse && c.ix == after.ix);
-        let along = before.z < here.z
-            && before.ix + 1 == here.ix
-            && ((after.ix == here.ix + 1 && under(&after)) || shadow)
-            && !(before.past || here.past || after.past);
-        if !along {
+        if !((after.ix == here.ix + 1 && under(&after)) || shadow) {
             continue;
         }
         // A cell beside it in a shadow hides ground under the line of sight over what
