@@ -1054,6 +1054,37 @@ fn a_stone_whose_foot_lies_in_a_dip_of_lumpy_ground_is_climbed() {
 }
 
 #[test]
+fn a_stone_whose_foot_lies_past_a_one_cell_shadow_of_lumpy_ground_is_climbed() {
+    // A VGA camera 0.71 m high, pitched 18.9°, rolled −9.5° and yawed −8.9°, over
+    // lumpy ground with stones (`sweep -- natural 100 3002 random` #83, clean and
+    // noisy, a `step` at 2.23 m). An 8.7 cm boulder in the left track stands 9.9 cm
+    // over the ground before it; its foot cell, 2 cm down in a dip, lies just past a
+    // one-cell shadow of a bump, which the step test measures across. The ground
+    // before that shadow, level within rough ground's spread, was not taken for the
+    // level the wheels come from, and the rise from the dip, 12 cm, stopped the rover.
+    // The same boulder 15 cm high stops.
+    let mut c = mounted([0.1910, 0.0653, 0.7103], [-9.5288, 18.8764, -8.9066]);
+    c.camera.min_range_m = 0.4349;
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.103_700_052,
+                seed: 34_370_908_286_108_581,
+            },
+            Element::stone(2.3454, 0.4058, 0.1150, height_m, StoneShape::Boulder),
+            Element::stone(1.5094, 0.4525, 0.0721, 0.0597, StoneShape::Mound),
+            Element::stone(1.5938, -0.5640, 0.0629, 0.0435, StoneShape::Cone),
+            Element::stone(2.6449, -0.5089, 0.1168, 0.0682, StoneShape::Cap),
+            Element::stone(2.2030, -0.3089, 0.0727, 0.0542, StoneShape::Cap),
+            Element::stone(1.9691, 0.3610, 0.0673, 0.0421, StoneShape::Cone),
+            Element::stone(2.1869, -0.6153, 0.0723, 0.0463, StoneShape::Cap),
+        ]
+    };
+    go_low_stop_tall(field, 0.0873, &c, 3_002_083, (Side::Left, None));
+}
+
+#[test]
 fn a_stone_with_a_broad_dip_of_lumpy_ground_past_it_is_climbed_down() {
     // A 320×240 camera 1.0 m high, rolled 9.2° and yawed 6.3°, over lumpy ground with
     // stones. Past an 8.6 cm stone in the right track the ground lies in a dip 0.3 m

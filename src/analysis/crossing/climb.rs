@@ -93,9 +93,10 @@ pub(super) fn strip_hazards(
                 continue;
             }
             let rough = if dz > 0.0 {
-                *rough_rise.get_or_insert_with(|| rough_at_foot(strip, i, true, wheelbase))
+                *rough_rise
+                    .get_or_insert_with(|| rough_at_foot(strip, i, true, (wheelbase, min_gap)))
             } else {
-                rough_at_foot(strip, j, false, wheelbase)
+                rough_at_foot(strip, j, false, (wheelbase, min_gap))
             };
             if dz.abs() - rough <= r {
                 continue; // a wheel radius or less over the ground the wheel comes from
@@ -141,8 +142,9 @@ pub(super) fn strip_hazards(
 
 /// How much of a rise's (or fall's) height over its foot (`strip[foot]`: a rise's lowest
 /// cell, `rise`, or a fall's) is rough ground's, not the obstacle's, metres. The ground
-/// on the foot's side of it (the contiguous cells seen whole up to a `wheelbase` before a
-/// rise's foot, or after a fall's, the foot included: the ground the wheels stand on as
+/// on the foot's side of it (the cells seen whole up to a `wheelbase` before a rise's
+/// foot, or after a fall's, the foot included, across holes shorter than `min_gap`
+/// cells, which the step test measures across too: the ground the wheels stand on as
 /// they come to it, wider than rough ground's dips) is level ground when it spans at most
 /// rough ground's peak to peak (twice [`FOOT_DIP_MAX_M`]) over at least
 /// [`FOOT_LEVEL_MIN_CELLS`] cells and lies on one line within rough ground's spread
@@ -157,13 +159,21 @@ pub(super) fn strip_hazards(
 /// still stands over it. Other ground there (a ramp, a trench's floor and the ground
 /// beside it, a stone at the foot) is no level line and counts nothing: the rise is
 /// measured from its foot. So does a foot with too few cells before it (the strip's first
-/// cells: what is before them is not seen).
-fn rough_at_foot(strip: &[StripCell], foot: usize, rise: bool, wheelbase: f32) -> f32 {
+/// cells: what is before them is not seen). Cut at a one-cell shadow of a bump, the
+/// ground before an 8.7 cm boulder whose foot lay in a 2 cm dip just past it was too
+/// short to be a line, and the boulder, 9.9 cm over the ground, stood 12 cm over the
+/// dip: a `step` (`sweep -- natural 100 3002 random` #83, clean and noisy).
+fn rough_at_foot(
+    strip: &[StripCell],
+    foot: usize,
+    rise: bool,
+    (wheelbase, min_gap): (f32, usize),
+) -> f32 {
     let x = strip[foot].x;
     let ground = if rise {
-        &strip[reach_back(strip, foot, 1, (x, wheelbase))..=foot]
+        &strip[reach_back(strip, foot, min_gap, (x, wheelbase))..=foot]
     } else {
-        &strip[foot..=reach_on(strip, foot, 1, (x, wheelbase))]
+        &strip[foot..=reach_on(strip, foot, min_gap, (x, wheelbase))]
     };
     let (low, high) = wheel_span(ground);
     if ground.len() < FOOT_LEVEL_MIN_CELLS || high - low > 2.0 * FOOT_DIP_MAX_M {
