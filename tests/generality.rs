@@ -3214,7 +3214,8 @@ fn a_one_track_ramp_whose_side_slopes_across_its_edge_strip_is_go_and_a_step_on_
 
 #[test]
 fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_stops() {
-    // A ramp under each track, their sides drawn sloping over 3-4 cm: far out a side
+    // A ramp under each track, their sides drawn sloping over 2.5-15 cm (the ones read
+    // here over 2.5-5.4 cm): far out a side
     // stands 75-85° across the track's edge strip, whose cells hold its points and
     // the ramp's top beside them, their means 6-8 cm under the top. The strip, read
     // along the side by those means, met a cell showing the side as a face along it
@@ -3223,18 +3224,51 @@ fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_s
     // v2 0.72 m high). Reading the means, the strip switched to a band where the band
     // continued it better by 1 mm, a 7 cm jump onto the ramp's top 2.8 m out, a
     // `step` (`bevelled 100 902 random 9` #87, clean, a 320×240 camera 0.66 m high,
-    // with the first rule alone).
+    // with the first rule alone). A 4.4 cm side 0.5 m high, 2.7 m out, which a
+    // 320×240 camera 0.84 m high pitched 18.4° sees from the side: the edge strip read
+    // it as a surface sloping across, its mean 6-13 cm under the ramp's top as the
+    // share of the side's points changed from row to row, then the top, an 18 cm
+    // `step` (`bevelled 100 3006 random` #75, clean and noisy). Where the next strip
+    // inward reads one surface, and the edge strip rises to it and no higher while it
+    // climbs less than the limit, the rise is the side's points under the track's
+    // surface. So were the `step`s where the view ends in two frames of D435-like
+    // cameras: a 2.5 cm side whose cells' means sink under the ramp's top the higher it
+    // stands (`bevelled 100 7609 random 9` #17, clean), a 5.4 cm side filling the
+    // edge strip of a 21.6° ramp (`bevelled 60 9209 random` #20, noisy).
     let mut kinect = kinect_v2(mounted(
         [0.285_513_211, -0.069_689_588, 0.715_517_222],
         [6.184_063_155, 35.951_418_994, -6.184_866_987],
     ));
     kinect.camera.min_range_m = 0.325_320_214;
+    let low_qvga = qvga(
+        mounted(
+            [0.091_587_082, -0.003_204_170, 0.838_157_463],
+            [-6.265_286_910, 18.361_800_848, -3.384_603_086],
+        ),
+        0.419_519_226,
+    );
     let qvga = qvga(
         mounted(
             [0.210_273_337, 0.044_917_314, 0.655_341_262],
             [1.866_437_364, 23.822_063_121, -2.806_347_365],
         ),
         0.325_485_310,
+    );
+    let d435_low = d435_like(
+        mounted(
+            [0.269_352_516, -0.002_338_035, 0.514_435_650],
+            [2.294_082_624, 20.219_053_351, -2.618_968_425],
+        ),
+        [430.502_423, 430.573_112, 420.068_958, 248.512_075],
+        0.358_438_982,
+    );
+    let d435_rolled = d435_like(
+        mounted(
+            [0.118_810_302, -0.038_656_591, 0.645_736_904],
+            [-8.352_530_139, 23.443_910_162, -6.362_628_409],
+        ),
+        [416.295_383, 415.076_765, 439.179_435, 237.793_600],
+        0.301_989_420,
     );
     // Per scene: the rig, (toe, gradient, side) of the left and the right ramp, the
     // workcase of the nearer one, and the noise seed.
@@ -3256,6 +3290,33 @@ fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_s
             ],
             3,
             902_087,
+        ),
+        (
+            low_qvga,
+            [
+                (1.338_220_538, 20.981_039_648, 0.044_416_880),
+                (1.722_301_867, 22.859_060_721, 0.147_431_935),
+            ],
+            3,
+            3_006_075,
+        ),
+        (
+            d435_low,
+            [
+                (1.144_984_823, 13.834_691_964, 0.035_537_993),
+                (0.645_700_423, 22.479_841_955, 0.024_576_488),
+            ],
+            5,
+            7_609_017,
+        ),
+        (
+            d435_rolled,
+            [
+                (1.044_215_370, 12.195_309_976, 0.087_271_726),
+                (0.592_010_525, 21.570_653_754, 0.054_391_025),
+            ],
+            5,
+            9_209_020,
         ),
     ] {
         let left = Extent::Bevelled {
@@ -3289,6 +3350,18 @@ fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_s
         });
         let v = analyse(stepped, &c);
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        // A 20 cm post 4 cm wide in the left track's edge strip alone, 0.3 m up the
+        // ramp: it stands over the inner strip's surface, so the edge strip's rise to
+        // it is no face under the track's surface.
+        let mut posted = ramps(g_l);
+        posted.push(block_at(toe_l + 0.3, 0.225, 0.08, 0.04, 0.2));
+        let v = analyse(posted, &c);
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Left),
+            "{:?}",
+            v.hazards
+        );
     }
 }
 

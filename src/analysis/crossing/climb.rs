@@ -57,12 +57,16 @@ fn on_rim(z: f32, dx: f32, r: f32) -> Option<f32> {
 /// [`steps_and_slopes`](super::steps_and_slopes)); with `rises_only`, only rises from
 /// cells before a sharp top (the test of sharp tops: each cell's `z` is then its
 /// highest point where that is a sharp top, and `peak` the height the first pass
-/// read), steps and slopes alike. Returns whether it found any.
+/// read), steps and slopes alike. A rise or fall between two cells for which
+/// `face_along` holds (the track's edge strip reading a face along the band edge
+/// under the track's surface, [`super::face_under_track`]) is none. Returns whether
+/// it found any.
 pub(super) fn strip_hazards(
     strip: &[StripCell],
     region: Region,
     (r, tan_max, wheelbase, min_gap): (f32, f32, f32, usize),
     (vs, rises_only): (f32, bool),
+    face_along: &dyn Fn(&StripCell, &StripCell) -> bool,
     verdict: &mut Verdict,
 ) -> bool {
     let mut found = false;
@@ -127,6 +131,9 @@ pub(super) fn strip_hazards(
                     None // flat, then a jump: a step, found from nearer cells
                 };
                 let Some((kind, at)) = kind else { break };
+                if face_along(a, b) {
+                    break;
+                }
                 verdict.add_hazard(Hazard {
                     kind,
                     side: region.side(),
@@ -502,6 +509,7 @@ mod tests {
             Region::Left,
             (0.11, 30f32.to_radians().tan(), 0.6, 2),
             (VS, false),
+            &|_, _| false,
             &mut v,
         );
         v.hazards.to_vec()
@@ -532,7 +540,14 @@ mod tests {
         wheel_heights(&mut run, 0.11);
         let mut v = Verdict::default();
         let limits = (0.11, 30f32.to_radians().tan(), 0.6, 2);
-        strip_hazards(&run, Region::Right, limits, (VS, false), &mut v);
+        strip_hazards(
+            &run,
+            Region::Right,
+            limits,
+            (VS, false),
+            &|_, _| false,
+            &mut v,
+        );
         v.hazards.to_vec()
     }
 
@@ -735,7 +750,14 @@ mod tests {
         let limits = (0.11, 30f32.to_radians().tan(), 0.6, 2);
         let found = |run: &[StripCell], rises_only: bool| {
             let mut v = Verdict::default();
-            strip_hazards(run, Region::Left, limits, (VS, rises_only), &mut v);
+            strip_hazards(
+                run,
+                Region::Left,
+                limits,
+                (VS, rises_only),
+                &|_, _| false,
+                &mut v,
+            );
             v.hazards.to_vec()
         };
         // Read from its means, no rise of more than a wheel radius up the cone's flank

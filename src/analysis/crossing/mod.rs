@@ -18,7 +18,7 @@ pub(crate) use belly::{median, track_medians};
 use climb::{strip_hazards, wheel_heights, STEP_REACH_VOXELS};
 use faces::{
     beside_slope, cross_slope, floor_beside_fringe, fringe_of_wall, slopes_across,
-    unresolved_ground, wall_goes_on,
+    unresolved_ground, wall_goes_on, FACE_MIN_M,
 };
 pub(crate) use faces::{ground_beside_face, unresolved_face_along};
 pub use gaps::{gaps, GRAZING_DEG};
@@ -166,7 +166,9 @@ pub fn steps_and_slopes(
             wheel_heights(strip, r);
             let min_gap = f.cfg.analysis.gap_min_cells as usize;
             let limits = (r, tan_max, wheelbase, min_gap);
-            if !strip_hazards(strip, region, limits, (vs, false), verdict) {
+            let face_along =
+                |a: &StripCell, b: &StripCell| face_under_track(f, iy, [a, b], (r, tan_max));
+            if !strip_hazards(strip, region, limits, (vs, false), &face_along, verdict) {
                 sharp_top_steps(f, (iy, region), strip, limits, verdict);
             }
         }
@@ -191,7 +193,16 @@ fn sharp_top_steps(
         std::mem::swap(&mut c.z, &mut c.peak);
     }
     wheel_heights(strip, limits.0);
-    strip_hazards(strip, region, limits, (f.spec.voxel_m, true), verdict);
+    let face_along =
+        |a: &StripCell, b: &StripCell| face_under_track(f, iy, [a, b], (limits.0, limits.1));
+    strip_hazards(
+        strip,
+        region,
+        limits,
+        (f.spec.voxel_m, true),
+        &face_along,
+        verdict,
+    );
 }
 
 /// Mark the sharp tops of strip `iy` (its seen cells, `strip`): where the strip reads
@@ -423,6 +434,64 @@ fn continued(last: [Option<(f32, f32)>; 2], x: f32, tan_max: f32) -> Option<f32>
     }
 }
 
+/// Whether a rise or fall of track strip `iy` between its cells `a` and `b` is the
+/// strip reading a face along the band edge below the track's surface, not a step or
+/// slope the track meets: `iy` is the track's edge strip beside the belly band, a cell
+/// at either end holds two levels (its points span more than [`FACE_MIN_M`]), the next
+/// strip inward reads one surface in both rows (seen whole, within [`FACE_MIN_M`]) and
+/// changes between them by at most a wheel radius `r` and less steeply than the limit
+/// `tan_max`, and the higher end stands at most rough ground's spread
+/// ([`ROUGH_SPREAD_M`]) over the inner strip's surface there. The track, half a metre
+/// wide, rests on that surface; the edge strip's lower reading is the face's points.
+///
+/// A one-track ramp's side, 4.4 cm wide and 0.5 m high 2.7 m out, seen by a 320×240
+/// camera: the edge strip read it as a surface sloping across, its mean 6-13 cm under
+/// the ramp's top as the share of the side's points changed from row to row, then the
+/// top: an 18 cm `step` where the inner strips climbed a smooth 21° (`sweep --
+/// bevelled 100 3006 random` #75, clean and noisy). A block or step across the track
+/// moves the inner strip with it; a post in the edge strip stands over its surface.
+fn face_under_track(f: &Frame, iy: usize, ends: [&StripCell; 2], (r, tan_max): (f32, f32)) -> bool {
+    let s = f.spec;
+    let Some((_, inward)) = edge_strip(f, iy) else {
+        return false;
+    };
+    if inward >= s.ny || f.region[inward] != f.region[iy] {
+        return false;
+    }
+    let spans = |ix: usize| {
+        let cell = &f.cells[s.cell(ix, iy)];
+        cell.top - cell.low >= FACE_MIN_M
+    };
+    let inner = |ix: usize| {
+        let c = s.cell(ix, inward);
+        let cell = &f.cells[c];
+        (f.seen[c] && !f.past[c] && cell.top - cell.low < FACE_MIN_M).then_some(cell.z)
+    };
+    let [a, b] = ends;
+    let (Some(za), Some(zb)) = (inner(a.ix), inner(b.ix)) else {
+        return false;
+    };
+    let (high, z_inner) = if b.z > a.z { (b, zb) } else { (a, za) };
+    let change = (zb - za).abs();
+    (spans(a.ix) || spans(b.ix))
+        && change <= r
+        && change < tan_max * (b.x - a.x).abs()
+        && high.z <= z_inner + ROUGH_SPREAD_M
+}
+
+/// For a track's edge strip `iy` beside the belly band, the belly strip across the
+/// band edge and the next strip inward (`usize::MAX` when there is none); `None` for
+/// any other strip.
+fn edge_strip(f: &Frame, iy: usize) -> Option<(usize, usize)> {
+    match f.region[iy] {
+        Region::Left if iy >= 1 && f.region[iy - 1] == Region::Belly => Some((iy - 1, iy + 1)),
+        Region::Right if iy + 1 < f.spec.ny && f.region[iy + 1] == Region::Belly => {
+            Some((iy + 1, iy.wrapping_sub(1)))
+        }
+        _ => None,
+    }
+}
+
 /// Whether track cell (`ix`, `iy`), its ground read as `z`, holds the belly band's
 /// ground spilled over the band edge rather than the strip's: the strip is the track's
 /// edge strip beside the belly band; `z` lies more than a wheel radius from the strip
@@ -438,12 +507,8 @@ fn spilled(f: &Frame, ix: usize, iy: usize, z: f32, near: Option<f32>, r: f32) -
     let Some(near) = near else {
         return false;
     };
-    let (across, inward) = match f.region[iy] {
-        Region::Left if iy >= 1 && f.region[iy - 1] == Region::Belly => (iy - 1, iy + 1),
-        Region::Right if iy + 1 < s.ny && f.region[iy + 1] == Region::Belly => {
-            (iy + 1, iy.wrapping_sub(1))
-        }
-        _ => return false,
+    let Some((across, inward)) = edge_strip(f, iy) else {
+        return false;
     };
     let belly = s.cell(ix, across);
     if (z - near).abs() <= r || !f.seen[belly] || (z - f.cells[belly].z).abs() > SPILL_M {
