@@ -1085,6 +1085,47 @@ fn a_stone_whose_foot_lies_past_a_one_cell_shadow_of_lumpy_ground_is_climbed() {
 }
 
 #[test]
+fn a_rock_whose_level_ground_before_it_ends_at_a_short_hole_is_climbed() {
+    // A D435-like camera 1.02 m high, pitched 42°, over a field of 8-9 cm rocks on
+    // rough ground (`sweep -- families 100 6601 random` #61, clean). An 8.7 cm rock in
+    // the right track stands 9.1 cm over the ground before it. The cells just before
+    // its foot are level ground; across a one-cell hole before them lies the top of
+    // an 8.6 cm rock, 7-9 cm up: no level line. Read across the hole alone, the rise
+    // was measured from the foot's dip, and a `slope` stopped the rover: the level
+    // either reading shows counts. The same rock 15 cm high stops.
+    let c = d435_like(
+        mounted([0.0732, -0.0599, 1.0193], [-4.2744, 42.0425, 3.1977]),
+        [424.153, 422.638, 428.744, 240.451],
+        0.4718,
+    );
+    let field = |height_m: f64| {
+        vec![
+            Element::Rough {
+                amplitude_m: 0.025,
+                correlation_m: 0.111_893_917,
+                seed: 7_020_678_729_137_960_925,
+            },
+            rock(1.6791, -0.3333, 0.1712, 0.0876),
+            rock(2.4577, 0.5360, 0.0687, 0.0427),
+            rock(0.8088, 0.3683, 0.0808, 0.0612),
+            rock(2.0396, -0.4195, 0.1494, 0.0865),
+            rock(1.2452, 0.6203, 0.0867, 0.0532),
+            rock(2.4593, -0.3113, 0.1434, height_m),
+            rock(1.0926, -0.6214, 0.1237, 0.0798),
+        ]
+    };
+    let v = analyse(field(0.0872), &c);
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    let v = analyse(field(0.15), &c);
+    assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+    assert!(
+        v.hazards.iter().any(|h| h.side == Side::Right),
+        "{:?}",
+        v.hazards
+    );
+}
+
+#[test]
 fn a_stone_with_a_broad_dip_of_lumpy_ground_past_it_is_climbed_down() {
     // A 320×240 camera 1.0 m high, rolled 9.2° and yawed 6.3°, over lumpy ground with
     // stones. Past an 8.6 cm stone in the right track the ground lies in a dip 0.3 m

@@ -150,9 +150,10 @@ pub(super) fn strip_hazards(
 /// How much of a rise's (or fall's) height over its foot (`strip[foot]`: a rise's lowest
 /// cell, `rise`, or a fall's) is rough ground's, not the obstacle's, metres. The ground
 /// on the foot's side of it (the cells seen whole up to a `wheelbase` before a rise's
-/// foot, or after a fall's, the foot included, across holes shorter than `min_gap`
-/// cells, which the step test measures across too: the ground the wheels stand on as
-/// they come to it, wider than rough ground's dips) is level ground when it spans at most
+/// foot, or after a fall's, the foot included, contiguous, or across holes shorter
+/// than `min_gap` cells, which the step test measures across too, whichever shows the
+/// level: the ground the wheels stand on as they come to it, wider than rough ground's
+/// dips) is level ground when it spans at most
 /// rough ground's peak to peak (twice [`FOOT_DIP_MAX_M`]) over at least
 /// [`FOOT_LEVEL_MIN_CELLS`] cells and lies on one line within rough ground's spread
 /// ([`ROUGH_LINE_RMS_M`]). Then the wheels come to the rise from that line, not from the
@@ -169,26 +170,45 @@ pub(super) fn strip_hazards(
 /// cells: what is before them is not seen). Cut at a one-cell shadow of a bump, the
 /// ground before an 8.7 cm boulder whose foot lay in a 2 cm dip just past it was too
 /// short to be a line, and the boulder, 9.9 cm over the ground, stood 12 cm over the
-/// dip: a `step` (`sweep -- natural 100 3002 random` #83, clean and noisy).
+/// dip: a `step` (`sweep -- natural 100 3002 random` #83, clean and noisy). Across a
+/// hole may lie another stone, no level line, where the cells short of the hole are
+/// one: an 8.7 cm rock 9.1 cm over the ground became a `slope` (`families 100 6601
+/// random` #61, clean).
 fn rough_at_foot(
     strip: &[StripCell],
     foot: usize,
     rise: bool,
     (wheelbase, min_gap): (f32, usize),
 ) -> f32 {
-    let x = strip[foot].x;
-    let ground = if rise {
-        &strip[reach_back(strip, foot, min_gap, (x, wheelbase))..=foot]
-    } else {
-        &strip[foot..=reach_on(strip, foot, min_gap, (x, wheelbase))]
+    // Contiguous cells, and across short holes: the level either shows.
+    let level = |step: usize| {
+        let x = strip[foot].x;
+        let ground = if rise {
+            &strip[reach_back(strip, foot, step, (x, wheelbase))..=foot]
+        } else {
+            &strip[foot..=reach_on(strip, foot, step, (x, wheelbase))]
+        };
+        level_below(ground, &strip[foot])
     };
+    if min_gap > 1 {
+        level(1).max(level(min_gap))
+    } else {
+        level(1)
+    }
+}
+
+/// How far `foot`'s wheel lies under the level line of `ground` (at most
+/// [`FOOT_DIP_MAX_M`]) plus that line's RMS spread (at most [`UNSEEN_FOOT_MARGIN_M`]),
+/// metres; 0 when `ground` is no level line (see [`rough_at_foot`]).
+fn level_below(ground: &[StripCell], foot: &StripCell) -> f32 {
+    let x = foot.x;
     let (low, high) = wheel_span(ground);
     if ground.len() < FOOT_LEVEL_MIN_CELLS || high - low > 2.0 * FOOT_DIP_MAX_M {
         return 0.0;
     }
     match line_fit(ground.iter().map(|c| (c.x, c.wheel))) {
         Some((line, rms)) if rms <= f64::from(ROUGH_LINE_RMS_M) => {
-            let dip = line.z(f64::from(x), 0.0) as f32 - strip[foot].wheel;
+            let dip = line.z(f64::from(x), 0.0) as f32 - foot.wheel;
             dip.clamp(0.0, FOOT_DIP_MAX_M) + (rms as f32).min(UNSEEN_FOOT_MARGIN_M)
         }
         _ => 0.0,
