@@ -181,19 +181,20 @@ fn rough_at_foot(
     (wheelbase, min_gap): (f32, usize),
 ) -> f32 {
     // Contiguous cells, and across short holes: the level either shows.
-    let level = |step: usize| {
-        let x = strip[foot].x;
-        let ground = if rise {
+    let x = strip[foot].x;
+    let ground = |step: usize| {
+        if rise {
             &strip[reach_back(strip, foot, step, (x, wheelbase))..=foot]
         } else {
             &strip[foot..=reach_on(strip, foot, step, (x, wheelbase))]
-        };
-        level_below(ground, &strip[foot])
+        }
     };
-    if min_gap > 1 {
-        level(1).max(level(min_gap))
+    let (near, across) = (ground(1), ground(min_gap.max(1)));
+    let level = level_below(near, &strip[foot]);
+    if across.len() == near.len() {
+        level
     } else {
-        level(1)
+        level.max(level_below(across, &strip[foot]))
     }
 }
 
