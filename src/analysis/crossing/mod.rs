@@ -169,21 +169,22 @@ pub fn steps_and_slopes(
             let face_along =
                 |a: &StripCell, b: &StripCell| face_under_track(f, iy, [a, b], (r, tan_max));
             if !strip_hazards(strip, region, limits, (vs, false), &face_along, verdict) {
-                sharp_top_steps(f, (iy, region), strip, limits, verdict);
+                sharp_top_steps(f, (iy, region), strip, limits, &face_along, verdict);
             }
         }
     }
 }
 
 /// The step test again on strip `iy` of `region` (its seen cells, `strip`, wheel
-/// heights set; `limits` as [`strip_hazards`] takes them), for rising steps only,
-/// with its sharp tops ([`sharp_tops`]) at their highest points, when it has any: a
-/// rise to a sharp top's highest point, which the mean read low.
+/// heights set; `limits` and `face_along` as [`strip_hazards`] takes them), for rising
+/// steps only, with its sharp tops ([`sharp_tops`]) at their highest points, when it
+/// has any: a rise to a sharp top's highest point, which the mean read low.
 fn sharp_top_steps(
     f: &Frame,
     (iy, region): (usize, Region),
     strip: &mut [StripCell],
     limits: (f32, f32, f32, usize),
+    face_along: &dyn Fn(&StripCell, &StripCell) -> bool,
     verdict: &mut Verdict,
 ) {
     if !sharp_tops(f, iy, strip) {
@@ -193,14 +194,12 @@ fn sharp_top_steps(
         std::mem::swap(&mut c.z, &mut c.peak);
     }
     wheel_heights(strip, limits.0);
-    let face_along =
-        |a: &StripCell, b: &StripCell| face_under_track(f, iy, [a, b], (limits.0, limits.1));
     strip_hazards(
         strip,
         region,
         limits,
         (f.spec.voxel_m, true),
-        &face_along,
+        face_along,
         verdict,
     );
 }
@@ -452,12 +451,9 @@ fn continued(last: [Option<(f32, f32)>; 2], x: f32, tan_max: f32) -> Option<f32>
 /// moves the inner strip with it; a post in the edge strip stands over its surface.
 fn face_under_track(f: &Frame, iy: usize, ends: [&StripCell; 2], (r, tan_max): (f32, f32)) -> bool {
     let s = f.spec;
-    let Some((_, inward)) = edge_strip(f, iy) else {
+    let Some((_, Some(inward))) = edge_strip(f, iy) else {
         return false;
     };
-    if inward >= s.ny || f.region[inward] != f.region[iy] {
-        return false;
-    }
     let spans = |ix: usize| {
         let cell = &f.cells[s.cell(ix, iy)];
         cell.top - cell.low >= FACE_MIN_M
@@ -480,16 +476,18 @@ fn face_under_track(f: &Frame, iy: usize, ends: [&StripCell; 2], (r, tan_max): (
 }
 
 /// For a track's edge strip `iy` beside the belly band, the belly strip across the
-/// band edge and the next strip inward (`usize::MAX` when there is none); `None` for
-/// any other strip.
-fn edge_strip(f: &Frame, iy: usize) -> Option<(usize, usize)> {
-    match f.region[iy] {
-        Region::Left if iy >= 1 && f.region[iy - 1] == Region::Belly => Some((iy - 1, iy + 1)),
+/// band edge and the next strip inward (`None` when the track has no other strip);
+/// `None` for any other strip.
+fn edge_strip(f: &Frame, iy: usize) -> Option<(usize, Option<usize>)> {
+    let (across, inward) = match f.region[iy] {
+        Region::Left if iy >= 1 && f.region[iy - 1] == Region::Belly => (iy - 1, iy + 1),
         Region::Right if iy + 1 < f.spec.ny && f.region[iy + 1] == Region::Belly => {
-            Some((iy + 1, iy.wrapping_sub(1)))
+            (iy + 1, iy.wrapping_sub(1))
         }
-        _ => None,
-    }
+        _ => return None,
+    };
+    let same_track = inward < f.spec.ny && f.region[inward] == f.region[iy];
+    Some((across, same_track.then_some(inward)))
 }
 
 /// Whether track cell (`ix`, `iy`), its ground read as `z`, holds the belly band's
@@ -514,8 +512,8 @@ fn spilled(f: &Frame, ix: usize, iy: usize, z: f32, near: Option<f32>, r: f32) -
     if (z - near).abs() <= r || !f.seen[belly] || (z - f.cells[belly].z).abs() > SPILL_M {
         return false;
     }
-    let inner_level = (inward < s.ny && f.region[inward] == f.region[iy])
-        .then(|| s.cell(ix, inward))
+    let inner_level = inward
+        .map(|j| s.cell(ix, j))
         .filter(|&c| f.seen[c])
         .map(|c| f.cells[c].z);
     inner_level.is_none_or(|zi| (zi - near).abs() < (zi - z).abs())
