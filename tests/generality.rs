@@ -2925,6 +2925,30 @@ fn a_rock_whose_front_the_view_ends_on_is_never_go() {
     assert_never_go(&[ramp.clone(), mound], &c, [5102, 10], Side::Left);
     assert_eq!(analyse(vec![ramp], &c).decision, Decision::Go);
 
+    // `sweep -- natural 100 3110 random 10` #65: a 320×240 camera 0.54 m high,
+    // pitched 36.6° and rolled 5.9°, sees a smooth 13.5° ramp from 1.34 m and, its
+    // foot 0.15 m up the ramp, a 15.3 cm mound in the right track. The image's top
+    // edge cuts the mound's front 5-6 cm over the ramp: in two strips only is it
+    // steeper than the limit, and there the toe's bend lay among the four cells before
+    // it, so they fitted no line. Go, workcase 2, clean and noisy.
+    let c = qvga(
+        mounted(
+            [0.231_471_572, -0.036_227_638, 0.539_394_008],
+            [5.872_413_175, 36.579_366_775, 0.179_223_436],
+        ),
+        0.389_910_746,
+    );
+    let ramp = Element::ramp(1.340_256_799, 0.0, 13.495_503_759, 0.0, Extent::Full);
+    let mound = Element::stone(
+        1.664_959_835,
+        -0.445_109_837,
+        0.176_846_016,
+        0.152_799_306,
+        StoneShape::Mound,
+    );
+    assert_never_go(&[ramp.clone(), mound], &c, [3_110_065, 65], Side::Right);
+    assert_eq!(analyse(vec![ramp], &c).decision, Decision::Go);
+
     // Random rigs: a smooth climbable ramp (or flat ground) whose view ends in the
     // corridor, and a 15-20 cm rock or stone of any shape in a track whose rim lies
     // up to 0.2 m before where the view of the ground alone ends there. The ground

@@ -8,6 +8,7 @@ use super::{
     followed, line_fit, sharp_apex, unknown_judged, Frame, Region, ROUGH_LINE_RMS_M,
     ROUGH_SPREAD_M, UNSEEN_FOOT_MARGIN_M,
 };
+use crate::analysis::plane::Plane;
 use crate::analysis::{low_step, visibility};
 use crate::grid::Cell;
 use crate::verdict::{Hazard, HazardKind, Verdict};
@@ -387,7 +388,8 @@ fn continues_beside(f: &Frame, surface: &[f32], iy: usize, start: usize, d: isiz
 /// count however wide the band: a 21 cm step under a track, seen rising 5-6 cm in
 /// three strips where a rolled camera's view ends across it, was a noisy go.
 /// On smooth ground a front the view ends on, seen from up to two cells before the
-/// cut, counts from a smaller bend ([`bends_up`], in [`BENT_STRIPS`] inner strips).
+/// cut, counts from a smaller bend ([`bends_up`], in [`BENT_STRIPS`] inner strips, or
+/// in [`BENT_TALL_STRIPS`] where it bends [`STEEP_EXIT_RISE_M`] or more).
 /// A ramp rising out of view at a passable slope is not this: it stays go, measured.
 /// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
 /// out of view in them.
@@ -411,7 +413,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         let (mut tall, mut over, mut nearest) = (0usize, 0usize, f32::INFINITY);
         let (mut short, mut short_nearest, mut inner) = (0usize, f32::INFINITY, 0usize);
         let (mut any_tall, mut any_nearest) = (0usize, f32::INFINITY);
-        let (mut bent, mut bent_nearest) = (0usize, f32::INFINITY);
+        let (mut bent, mut bent_tall, mut bent_nearest) = (0usize, 0usize, f32::INFINITY);
         for iy in inner_strips(f, region) {
             inner += 1;
             let ground = |ix: usize| {
@@ -469,8 +471,9 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .chain(climb)
                 .chain(cut.clone().map(|(_, c)| (c.crest_xy[0], c.crest)));
             let steep = face || line_fit(points).is_some_and(|(p, _)| p.a as f32 >= tan_max);
-            if let Some(x) = bends_up(f, iy, h, before(), cut, tan_max) {
+            if let Some((x, bend)) = bends_up(f, iy, h, before(), cut, tan_max) {
                 bent += 1;
+                bent_tall += usize::from(bend >= STEEP_EXIT_RISE_M);
                 bent_nearest = bent_nearest.min(x);
             }
             if !steep && !spread {
@@ -492,7 +495,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             (true, nearest)
         } else if any_tall >= SPREAD_TALL_STRIPS {
             (true, any_nearest)
-        } else if bent >= BENT_STRIPS {
+        } else if bent >= BENT_STRIPS || bent_tall >= BENT_TALL_STRIPS {
             (true, bent_nearest)
         } else {
             (broad(short, inner), short_nearest)
@@ -557,14 +560,15 @@ fn fronts<'c>(
 
 /// Where a strip's view ends (`h`, its first cut cell) on smooth ground, whether the
 /// cut cells show a rise steeper than the rover climbs: the x of the last ground cell
-/// on the smooth ground's line, metres, or `None`.
+/// on the smooth ground's line and the most a cut cell's top stands over that line,
+/// metres, or `None`.
 ///
 /// `before` is the strip's ground over the wheelbase before `h`, one cell after the
 /// other from `h − 1` back (its k-th item is cell `h − 1 − k`); `cut` its seen cells
 /// among the first three from `h`, with their column. The front may
 /// begin up to [`FRONT_CELLS`] ground cells before the cut. For each such start, when
-/// the [`SMOOTH_GROUND_CELLS`] ground cells before it lie on one line within
-/// [`SMOOTH_GROUND_RMS_M`] (no bumps that steepen a short stretch), a cut cell counts
+/// the ground cells before it lie on smooth ground's line ([`smooth_line`]: no bumps
+/// that steepen a short stretch), a cut cell counts
 /// when its top stands [`BEND_RISE_M`] or more above that line carried to the cell's
 /// far edge (off the ground the strip was on), above the line where the front begins
 /// by more than the slope limit `tan_max` climbs from there to the cell's far edge
@@ -583,17 +587,11 @@ fn bends_up<'c>(
     before: impl Iterator<Item = (f32, f32)> + Clone,
     cut: impl Iterator<Item = (usize, &'c Cell)> + Clone,
     tan_max: f32,
-) -> Option<f32> {
+) -> Option<(f32, f32)> {
     let s = f.spec;
     (0..=FRONT_CELLS).find_map(|lead| {
-        let window = before.clone().skip(lead).take(SMOOTH_GROUND_CELLS);
-        if window.clone().count() < SMOOTH_GROUND_CELLS {
-            return None;
-        }
-        let (line, rms) = line_fit(window.clone())?;
-        if rms > f64::from(SMOOTH_GROUND_RMS_M) {
-            return None;
-        }
+        let window = before.clone().skip(lead);
+        let line = smooth_line(window.clone())?;
         let (last_x, _) = window.clone().next()?;
         let end = h - 1 - lead;
         let front_top = (end + 1..h)
@@ -601,13 +599,42 @@ fn bends_up<'c>(
             .fold(f32::NEG_INFINITY, f32::max);
         let on_line = |x: f32| line.z(f64::from(x), 0.0) as f32;
         let near = s.x_centre(end) + 0.5 * s.voxel_m;
-        let bends = cut.clone().any(|(ix, c)| {
-            let far = s.x_centre(ix) + 0.5 * s.voxel_m;
-            c.top - on_line(far) >= BEND_RISE_M
-                && c.top - on_line(near) >= tan_max * (far - near)
-                && c.top >= front_top + FRONT_RISING_M
-        });
-        bends.then_some(last_x)
+        let bend = cut
+            .clone()
+            .filter_map(|(ix, c)| {
+                let far = s.x_centre(ix) + 0.5 * s.voxel_m;
+                let bend = c.top - on_line(far);
+                (bend >= BEND_RISE_M
+                    && c.top - on_line(near) >= tan_max * (far - near)
+                    && c.top >= front_top + FRONT_RISING_M)
+                    .then_some(bend)
+            })
+            .reduce(f32::max)?;
+        Some((last_x, bend))
+    })
+}
+
+/// The line of smooth ground a strip's cells lie on, `cells` from the nearest to a
+/// front back: the first [`SMOOTH_GROUND_CELLS`] on one line within
+/// [`SMOOTH_GROUND_RMS_M`], or, where they bend (a ramp's toe among them), the first
+/// [`BENT_GROUND_CELLS`] on one line and the as many after them on another, each
+/// within it: the nearer line, the ground the front rises from. A stone 0.15 m up a
+/// smooth ramp has the toe's bend among the four cells before its front (a 15.3 cm
+/// mound 0.15 m past a 13.5° ramp's toe, cut by a low 320×240 camera's top edge 6 cm
+/// up its front, was a go: `sweep -- natural 100 3110 random 10` #65, clean and
+/// noisy). Rough ground's cells lie on no such pair of lines.
+fn smooth_line(cells: impl Iterator<Item = (f32, f32)> + Clone) -> Option<Plane> {
+    let fits = |skip: usize, n: usize| {
+        let run = cells.clone().skip(skip).take(n);
+        if run.clone().count() < n {
+            return None;
+        }
+        line_fit(run)
+            .and_then(|(line, rms)| (rms <= f64::from(SMOOTH_GROUND_RMS_M)).then_some(line))
+    };
+    fits(0, SMOOTH_GROUND_CELLS).or_else(|| {
+        let near = fits(0, BENT_GROUND_CELLS)?;
+        fits(BENT_GROUND_CELLS, BENT_GROUND_CELLS).map(|_| near)
     })
 }
 
@@ -625,6 +652,9 @@ const SMOOTH_GROUND_RMS_M: f32 = 0.001;
 /// and `natural 88 179 random`, `families 300 2 random`, where 4 mm RMS over five
 /// cells had made a false stop).
 const SMOOTH_GROUND_CELLS: usize = 4;
+/// How many ground cells either side of a bend [`smooth_line`] fits a line to: 15 cm
+/// at the default voxel, the nearer run the ground a front rises from.
+const BENT_GROUND_CELLS: usize = 3;
 /// Most ground cells of a front that [`bends_up`] looks for between the smooth
 /// ground's line and the cut: 10 cm, a rock's or a mound's front.
 const FRONT_CELLS: usize = 2;
@@ -643,6 +673,15 @@ const BEND_RISE_M: f32 = 0.02;
 /// ([`bends_up`]) for [`steep_exit`] to take it for an unseen front: 15 cm, so one
 /// or two strips of noise do not count.
 const BENT_STRIPS: usize = 3;
+/// Fewer inner strips suffice where each bends up [`STEEP_EXIT_RISE_M`] or more over
+/// its smooth ground's line: 10 cm of a front, beyond noise and rough ground's peak
+/// to peak. A 15.3 cm mound 0.15 m up a smooth 13.5° ramp, cut by a low 320×240
+/// camera's top edge, rose 5.2-5.8 cm over the ramp's line in two strips; on its
+/// flanks beside them the front rose more gently than the limit and stopped rising
+/// where the view ended (`sweep -- natural 100 3110 random 10` #65, clean and noisy,
+/// a go). A 7.7 cm rock at the view's end on rough ground whose cells lay on a line
+/// bent 3.4-3.7 cm in two strips, and goes (`families 100 3101 random` #28).
+const BENT_TALL_STRIPS: usize = 2;
 
 /// Least rise from a climb's foot to the top of the cut cells the view ends in for
 /// [`steep_exit`], metres: more than rough ground's peak to peak (±2.5 cm).
@@ -695,4 +734,45 @@ fn inner_strips<'a>(f: &'a Frame, region: Region) -> impl Iterator<Item = usize>
     let last = f.strips(region).last();
     f.strips(region)
         .filter(move |&iy| first.is_some_and(|a| iy > a) && last.is_some_and(|b| iy < b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn smooth_ground_may_bend_once_at_a_ramp_s_toe_but_not_at_rough_ground_s_bumps() {
+        // A strip's cells from a front back, on a smooth 13.5° ramp whose toe lies
+        // between the third and the fourth (`sweep -- natural 100 3110 random 10` #65,
+        // clean, strip 4 of the right track; metres, to the 0.1 mm).
+        let toe = [
+            (1.4764, 0.0331),
+            (1.4249, 0.0203),
+            (1.3751, 0.0084),
+            (1.3266, 0.0003),
+            (1.2747, 0.0000),
+            (1.2244, 0.0000),
+        ];
+        let (_, rms) = line_fit(toe.iter().copied().take(SMOOTH_GROUND_CELLS)).unwrap();
+        assert!(rms > f64::from(SMOOTH_GROUND_RMS_M), "{rms}");
+        let line = smooth_line(toe.iter().copied()).expect("the ramp's line");
+        let tan = 13.5_f64.to_radians().tan();
+        assert!((line.a - tan).abs() < 0.01, "{} for {tan}", line.a);
+        // Without the flat run beyond the bend, no smooth ground is shown.
+        assert!(smooth_line(toe.iter().copied().take(5)).is_none());
+        // On one line, four cells suffice.
+        let ramp = (0..4).map(|k| (1.5 - 0.05 * k as f32, 0.04 - 0.012 * k as f32));
+        assert!(smooth_line(ramp).is_some());
+        // Rough ground's cell means: off a line by 2-4 mm either side of any bend.
+        let rough = [
+            (1.50, 0.012),
+            (1.45, 0.016),
+            (1.40, 0.011),
+            (1.35, 0.004),
+            (1.30, 0.007),
+            (1.25, 0.002),
+            (1.20, -0.004),
+        ];
+        assert!(smooth_line(rough.iter().copied()).is_none());
+    }
 }
