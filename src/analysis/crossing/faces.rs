@@ -127,6 +127,12 @@ pub(super) fn unresolved_ground(
     Some(if away { cell.low } else { cell.top })
 }
 
+/// Whether a cell's points span [`FACE_MIN_M`] or more: two levels (a face, or a
+/// surface sloping steeply across the cell), not one surface seen whole.
+pub(super) fn two_levels(cell: &Cell) -> bool {
+    cell.top - cell.low >= FACE_MIN_M
+}
+
 /// Whether a cell holds a face along its strip whose ground its two surfaces do not
 /// give: its points span more than [`FACE_MIN_M`] and hug one side of the cell
 /// (their mean off the strip's centre line by [`FACE_OFF_VOXELS`], and off the row's
@@ -141,7 +147,7 @@ pub(crate) fn unresolved_face_along(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32
 /// The side test of [`unresolved_face_along`], without the band test.
 fn hugs_one_side(cell: &Cell, x_mid: f32, y_mid: f32, vs: f32) -> bool {
     let off_y = (cell.y - y_mid).abs();
-    cell.top - cell.low >= FACE_MIN_M
+    two_levels(cell)
         && off_y >= FACE_OFF_VOXELS * vs
         && (cell.x - x_mid).abs() <= 0.5 * FACE_OFF_VOXELS * vs
 }
@@ -214,9 +220,7 @@ pub(super) fn cross_slope(cell: &Cell, vs: f32) -> Option<f32> {
 /// random` #13, noisy).
 pub(super) fn beside_slope(cell: &Cell, y_mid: f32, cross: f32, vs: f32) -> Option<f32> {
     let off = cell.y - y_mid;
-    (cell.crest == cell.foot
-        && cell.top - cell.low < FACE_MIN_M
-        && off.abs() > SPREAD_OFF_VOXELS * vs)
+    (cell.crest == cell.foot && !two_levels(cell) && off.abs() > SPREAD_OFF_VOXELS * vs)
         .then_some(cell.z - off * cross)
 }
 

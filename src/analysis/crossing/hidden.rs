@@ -2,7 +2,7 @@
 //! whose far side is hidden, a climb whose foot lies before the view, a climb that
 //! leaves the view too steep to be a ramp.
 
-use super::faces::{FACE_MIN_M, FACE_OFF_VOXELS};
+use super::faces::{two_levels, FACE_OFF_VOXELS};
 use super::gaps::from_rover_ground;
 use super::{
     followed, line_fit, sharp_apex, unknown_judged, Frame, Region, ROUGH_LINE_RMS_M,
@@ -394,10 +394,10 @@ fn continues_beside(f: &Frame, surface: &[f32], iy: usize, start: usize, d: isiz
 /// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
 /// out of view in them.
 ///
-/// A belly strip's ground is its cells' mean, but a cell holding two levels (its
-/// points spanning [`FACE_MIN_M`] or more) reads its top: the strip has been seen
-/// that high there. A one-track ramp drawn into the belly band puts its side face
-/// inside a belly strip, the ramp's top on one side, the flat on the other; read at
+/// A belly strip's ground is its cells' mean, but a cell holding two levels
+/// ([`two_levels`]: its points spanning 4 cm or more) reads its top: the strip has
+/// been seen that high there. A one-track ramp drawn into the belly band puts its side
+/// face inside a belly strip, the ramp's top on one side, the flat on the other; read at
 /// their mean, which lies between the levels wherever each one's share of the points
 /// puts it, such a strip's cells climbed into the ramp's top in the cut cells, a front
 /// across it, `unknown` (a ramp 11 cm into the band, capped at 0.36 m: `sweep --
@@ -420,11 +420,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 let c = s.cell(ix, iy);
                 let z = if region == Region::Belly {
                     let cell = &f.cells[c];
-                    let z = if cell.top - cell.low >= FACE_MIN_M {
-                        cell.top
-                    } else {
-                        cell.z
-                    };
+                    let z = if two_levels(cell) { cell.top } else { cell.z };
                     (f.seen[c] && !f.past[c]).then_some(z)
                 } else {
                     followed(f, surface, c)

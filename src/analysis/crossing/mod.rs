@@ -17,8 +17,8 @@ pub use belly::belly;
 pub(crate) use belly::{median, track_medians};
 use climb::{strip_hazards, wheel_heights, STEP_REACH_VOXELS};
 use faces::{
-    beside_slope, cross_slope, floor_beside_fringe, fringe_of_wall, slopes_across,
-    unresolved_ground, wall_goes_on, FACE_MIN_M,
+    beside_slope, cross_slope, floor_beside_fringe, fringe_of_wall, slopes_across, two_levels,
+    unresolved_ground, wall_goes_on,
 };
 pub(crate) use faces::{ground_beside_face, unresolved_face_along};
 pub use gaps::{gaps, GRAZING_DEG};
@@ -436,11 +436,11 @@ fn continued(last: [Option<(f32, f32)>; 2], x: f32, tan_max: f32) -> Option<f32>
 /// Whether a rise or fall of track strip `iy` between its cells `a` and `b` is the
 /// strip reading a face along the band edge below the track's surface, not a step or
 /// slope the track meets: `iy` is the track's edge strip beside the belly band, a cell
-/// at either end holds two levels (its points span more than [`FACE_MIN_M`]), the next
-/// strip inward reads one surface in both rows (seen whole, within [`FACE_MIN_M`]) and
-/// changes between them by at most a wheel radius `r` and less steeply than the limit
-/// `tan_max`, and the higher end stands at most rough ground's spread
-/// ([`ROUGH_SPREAD_M`]) over the inner strip's surface there. The track, half a metre
+/// at either end holds two levels ([`two_levels`]), the next strip inward reads one
+/// surface in both rows (seen whole, not two levels) and changes between them by at
+/// most a wheel radius `r` and less steeply than the limit `tan_max`, and the higher
+/// end stands at most rough ground's spread ([`ROUGH_SPREAD_M`]) over the inner
+/// strip's surface there. The track, half a metre
 /// wide, rests on that surface; the edge strip's lower reading is the face's points.
 ///
 /// A one-track ramp's side, 4.4 cm wide and 0.5 m high 2.7 m out, seen by a 320×240
@@ -454,14 +454,11 @@ fn face_under_track(f: &Frame, iy: usize, ends: [&StripCell; 2], (r, tan_max): (
     let Some((_, Some(inward))) = edge_strip(f, iy) else {
         return false;
     };
-    let spans = |ix: usize| {
-        let cell = &f.cells[s.cell(ix, iy)];
-        cell.top - cell.low >= FACE_MIN_M
-    };
+    let spans = |ix: usize| two_levels(&f.cells[s.cell(ix, iy)]);
     let inner = |ix: usize| {
         let c = s.cell(ix, inward);
         let cell = &f.cells[c];
-        (f.seen[c] && !f.past[c] && cell.top - cell.low < FACE_MIN_M).then_some(cell.z)
+        (f.seen[c] && !f.past[c] && !two_levels(cell)).then_some(cell.z)
     };
     let [a, b] = ends;
     let (Some(za), Some(zb)) = (inner(a.ix), inner(b.ix)) else {
