@@ -43,6 +43,19 @@
 //! each stone or rock drawn 12 cm or higher, how high its apex stands over the ground
 //! before it (`RELIEF #N ...`, sampled from the height field); a stop where a go was
 //! due prints it for every stone and rock.
+//!
+//! `APPROACH=BACK_M,STEP_M,AHEAD_M` (default `1,0.1,1` when set to `1`) drives the
+//! rover of each go where a stop was due straight up to and past the scene's pose:
+//! from `BACK_M` behind it to `AHEAD_M` past it, `STEP_M` a frame with odometry (the
+//! terrain memory fusing, as in service), its frames noisy where the go was (each
+//! frame its own noise seed, so the drive's frame at the pose is not the sweep's
+//! noisy frame, and may differ from it). A line `APPROACH #N noisy=...` says where
+//! along that drive the verdict is first not go (metres from the scene's pose,
+//! negative before it), with which hazard, and how many frames after it go again, or
+//! that every frame goes; the last line sums them up. A rover driving so stops at the
+//! first. An obstacle the scene's frame does not see whole (the view ends on it, or
+//! on its side) should be found a frame or two nearer, or was found farther back; one
+//! that goes all the way is the false go to fix first.
 
 #[path = "../tests/common/second_renderer.rs"]
 mod second;
@@ -54,6 +67,7 @@ use rover_terrain::sim::{
     self, families, random, Element, Expectation, KinectNoise, Terrain, Tolerance,
 };
 use rover_terrain::validate::{compare, CLEAN, NOISY};
+use rover_terrain::verdict::Hazard;
 use rover_terrain::{Config, Decision, Pipeline};
 
 fn main() {
@@ -79,6 +93,21 @@ fn main() {
     // WANT=1: also each frame's expectation, on a line of its own.
     let want_too = std::env::var("WANT").is_ok_and(|v| v == "1");
     let mut not_drawn = 0;
+    // APPROACH=BACK_M,STEP_M,AHEAD_M: drive up to each false go (see the module doc).
+    let approach: Option<Drive> = std::env::var("APPROACH").ok().map(|v| {
+        let p: Vec<f64> = v.split(',').filter_map(|s| s.parse().ok()).collect();
+        match p[..] {
+            [back, step, ahead] if back >= 0.0 && step > 0.0 && ahead > 0.0 => {
+                Drive { back, step, ahead }
+            }
+            _ => Drive {
+                back: 1.0,
+                step: 0.1,
+                ahead: 1.0,
+            },
+        }
+    });
+    let mut approaches = Approaches::default();
     for i in 0..n {
         let (terrain, want, config, tol) = draw(&mut rng, mode, i, random_rig, family);
         if only.as_ref().is_some_and(|o| !o.contains(&i)) {
@@ -142,6 +171,12 @@ fn main() {
             total += 1;
             if v.decision == Decision::Go && want.verdict != Decision::Go {
                 false_go += 1;
+                if let Some(drive) = approach {
+                    let noise = noisy.then_some(seed * 1000 + i as u64);
+                    let a = drive.run(&terrain, &config, noise);
+                    println!("APPROACH #{i} noisy={noisy} {}", a.describe());
+                    approaches.add(&a);
+                }
             }
             if let (Ok(dir), true) = (std::env::var("DUMP"), all || !fails.is_empty()) {
                 dump(std::path::Path::new(&dir), i, &terrain, &config);
@@ -164,6 +199,9 @@ fn main() {
     );
     if exact {
         println!("{not_drawn} scenes not drawn (not made of planes and rocks)");
+    }
+    if let Some(drive) = approach {
+        approaches.report(drive);
     }
     if mode == "oblique" || FAMILY_MODES.contains(&mode) {
         println!(
@@ -352,5 +390,145 @@ fn draw(
             let (t, w) = random::workcase_scene(rng, i);
             (t, w, Config::default(), tol)
         }
+    }
+}
+
+/// A drive up to a scene's pose: from `back` metres behind it to `ahead` past it,
+/// `step` metres a frame.
+#[derive(Debug, Clone, Copy)]
+struct Drive {
+    back: f64,
+    step: f64,
+    ahead: f64,
+}
+
+impl Drive {
+    /// Drive it in `terrain` on `config`'s rig, each frame rendered with odometry
+    /// and, with `noise`'s seed, Kinect noise (seeded per frame), through one
+    /// pipeline (its terrain memory fusing them).
+    fn run(self, terrain: &Terrain, config: &Config, noise: Option<u64>) -> Approach {
+        let n = ((self.back + self.ahead) / self.step).round() as usize;
+        let step = sim::drive::Step {
+            forward_m: self.step,
+            turn_rad: 0.0,
+        };
+        let start = sim::Pose {
+            x: -self.back,
+            ..sim::Pose::default()
+        };
+        let drive =
+            sim::drive::render_drive_from(terrain, config, start, &vec![step; n], 1.0, 10.0);
+        let mut pipeline = Pipeline::new(config.clone()).expect("config works");
+        let mut frames = Vec::with_capacity(n + 1);
+        for (k, (mut frame, pose, _)) in drive.into_iter().enumerate() {
+            if let Some(seed) = noise {
+                KinectNoise {
+                    seed: seed.wrapping_mul(1000).wrapping_add(k as u64),
+                    ..Default::default()
+                }
+                .apply(&mut frame, config.camera.hfov_deg);
+            }
+            let v = pipeline.process(&frame).expect("frame fits");
+            let nearest = v
+                .hazards
+                .iter()
+                .copied()
+                .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
+            // Metres from the scene's pose, on the step's grid (no −0.00).
+            let x = (pose.x / self.step).round() * self.step + 0.0;
+            frames.push((
+                x,
+                (v.decision != Decision::Go).then_some((v.decision, nearest)),
+            ));
+        }
+        Approach {
+            drive: self,
+            frames,
+        }
+    }
+}
+
+/// What a [`Drive`] showed: per frame, its pose's x (metres from the scene's pose)
+/// and `None` for a go, else its decision and nearest hazard.
+struct Approach {
+    drive: Drive,
+    frames: Vec<(f64, Option<NotGo>)>,
+}
+
+/// A frame that did not go: its decision and nearest hazard.
+type NotGo = (Decision, Option<Hazard>);
+
+impl Approach {
+    /// The first frame that is not go.
+    fn first_not_go(&self) -> Option<usize> {
+        self.frames.iter().position(|(_, f)| f.is_some())
+    }
+
+    /// Go frames after the first that was not.
+    fn go_again(&self) -> usize {
+        self.first_not_go().map_or(0, |k| {
+            self.frames[k..].iter().filter(|(_, f)| f.is_none()).count()
+        })
+    }
+
+    fn describe(&self) -> String {
+        let d = self.drive;
+        match self.first_not_go() {
+            None => format!(
+                "go in every frame from {:.2} m before the scene's pose to {:.2} m past it",
+                d.back, d.ahead
+            ),
+            Some(k) => {
+                let (x, f) = self.frames[k];
+                let (decision, hazard) = f.expect("not go");
+                let hazard = hazard.map_or("no hazard".to_string(), |h| {
+                    format!("{:?} {:?} {:.2} m", h.kind, h.side, h.distance_m)
+                });
+                format!(
+                    "first not go at {x:+.2} m from the scene's pose ({decision:?}, {hazard}), {} go frames after it",
+                    self.go_again()
+                )
+            }
+        }
+    }
+}
+
+/// The tally of a sweep's approaches.
+#[derive(Default)]
+struct Approaches {
+    driven: usize,
+    before: usize,
+    latest_m: Option<f64>,
+    never: usize,
+    flickers: usize,
+}
+
+impl Approaches {
+    fn add(&mut self, a: &Approach) {
+        self.driven += 1;
+        match a.first_not_go().map(|k| a.frames[k].0) {
+            None => self.never += 1,
+            Some(x) if x < 0.0 => self.before += 1,
+            Some(x) => self.latest_m = Some(self.latest_m.map_or(x, |l: f64| l.max(x))),
+        }
+        self.flickers += usize::from(a.go_again() > 0);
+    }
+
+    fn report(&self, d: Drive) {
+        let latest = self.latest_m.map_or("none".to_string(), |x| {
+            format!("the latest {x:.2} m past it")
+        });
+        println!(
+            "{} false go frames driven up to ({:.2} m back to {:.2} m on): {} not go before the \
+             scene's pose, {} at or past it ({latest}), {} go all the way; {} go again after a \
+             frame that was not",
+            self.driven,
+            d.back,
+            d.ahead,
+            self.before,
+            self.driven - self.before - self.never,
+            self.never,
+            self.flickers
+        );
     }
 }
