@@ -44,6 +44,11 @@
 //! before it (`RELIEF #N ...`, sampled from the height field); a stop where a go was
 //! due prints it for every stone and rock.
 //!
+//! `MAX_RANGE=M` sets every rig's far range limit (`camera.max_range_m`, 4.5 m as
+//! drawn) to `M` metres after the scene is drawn: where it falls inside the corridor,
+//! surfaces leave the sensor's range there. A scene's obstacle may then lie out of
+//! range, so only the stops where a go was due (and a go's measures) count.
+//!
 //! `APPROACH=BACK_M,STEP_M,AHEAD_M` (default `1,0.1,1` when set to `1`) drives the
 //! rover of each go where a stop was due straight up to and past the scene's pose:
 //! from `BACK_M` behind it to `AHEAD_M` past it, `STEP_M` a frame with odometry (the
@@ -108,8 +113,18 @@ fn main() {
         }
     });
     let mut approaches = Approaches::default();
+    // MAX_RANGE=M: every rig's camera sees to M metres (see the module doc).
+    let max_range: Option<f64> = std::env::var("MAX_RANGE").ok().map(|v| {
+        v.parse()
+            .ok()
+            .filter(|m: &f64| m.is_finite() && *m > 1.0)
+            .expect("MAX_RANGE is a range in metres over 1")
+    });
     for i in 0..n {
-        let (terrain, want, config, tol) = draw(&mut rng, mode, i, random_rig, family);
+        let (terrain, want, mut config, tol) = draw(&mut rng, mode, i, random_rig, family);
+        if let Some(m) = max_range {
+            config.camera.max_range_m = m;
+        }
         if only.as_ref().is_some_and(|o| !o.contains(&i)) {
             continue;
         }

@@ -206,6 +206,20 @@ impl Cell {
 /// ([`VoxelGrid::cut`]); two, so that one dropped pixel does not hide a cut.
 pub const CUT_ROWS: usize = 2;
 
+/// Depth band below the camera's far range limit whose points, like the top
+/// [`CUT_ROWS`] rows', mark the cells where the view is cut ([`VoxelGrid::cut`]),
+/// millimetres: about one 5 cm cell of ground, more than depth noise and a Kinect's
+/// disparity step at 3 m (1-3 cm). A surface reaching the far limit leaves the
+/// sensor's range there, as one reaching the image's top edge leaves its view.
+pub const RANGE_CUT_MM: u16 = 50;
+
+/// How near the far range limit an image column's topmost depth in range must lie
+/// to mark its cell as cut ([`VoxelGrid::cut`]), millimetres. Ground met at a grazing
+/// angle 3 m out steps 4-7 cm in depth from one pixel row to the next (a 320×240
+/// camera's rows, a 10-14° descent): its last row in range may lie that far short
+/// of the limit, and no point of its strip in [`RANGE_CUT_MM`].
+pub const TOPMOST_CUT_MM: u16 = 150;
+
 /// Voxels with fewer points than this do not count for a column's top (one stray
 /// point must not raise a rock).
 pub const TOP_MIN_POINTS: u32 = 2;
@@ -488,22 +502,39 @@ fn drop_mixed(
     dropped
 }
 
-/// How many of a row's depths (mm) lie in `[min_mm, max_mm]`, and the least of them
-/// (`u16::MAX` when none). Vectorises.
+/// How many of a row's depths (mm) lie in `[min_mm, max_mm]`, the least of them
+/// (`u16::MAX` when none), and how many lie in `[far_mm, max_mm]`. Vectorises (a
+/// running maximum beside the minimum did not: binning flat.png took 1.7× as long).
 #[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
-fn depths_in_range(pixels: &[u16], min_mm: u16, max_mm: u16) -> (u32, u16) {
-    let (mut n, mut nearest) = (0u32, u16::MAX);
+fn depths_in_range(pixels: &[u16], min_mm: u16, max_mm: u16, far_mm: u16) -> (u32, u16, u32) {
+    let (mut n, mut nearest, mut n_far) = (0u32, u16::MAX, 0u32);
     // Counted in 16-bit lanes, as wide as the depths: a whole row is one chunk.
     for chunk in pixels.chunks(usize::from(u16::MAX)) {
-        let mut count = 0u16;
+        let (mut count, mut far) = (0u16, 0u16);
         for &d in chunk {
             let in_range = (d >= min_mm) & (d <= max_mm);
             count += u16::from(in_range);
+            far += u16::from((d >= far_mm) & (d <= max_mm));
             nearest = nearest.min(if in_range { d } else { u16::MAX });
         }
         n += u32::from(count);
+        n_far += u32::from(far);
     }
-    (n, nearest)
+    (n, nearest, n_far)
+}
+
+/// Mark the columns of a row whose depth lies in `[min_mm, max_mm]` as having had
+/// their topmost such depth (`col_seen`); returns how many were not marked before.
+/// Most frames mark every column in their first rows in range; then the caller skips
+/// it.
+fn see_columns(col_seen: &mut [bool], pixels: &[u16], min_mm: u16, max_mm: u16) -> usize {
+    let mut newly = 0;
+    for (seen, &d) in col_seen.iter_mut().zip(pixels) {
+        let now = !*seen && d >= min_mm && d <= max_mm;
+        newly += usize::from(now);
+        *seen |= now;
+    }
+    newly
 }
 
 /// The branch-free half of binning one row: every pixel's voxel index (`u32::MAX`
@@ -589,11 +620,15 @@ struct RowBuffers {
     qx: Vec<f32>,
     qy: Vec<f32>,
     qz: Vec<f32>,
+    /// Per image column: whether a row above (binned, or the one being) held a
+    /// depth in range, so that the column's topmost one is behind.
+    col_seen: Vec<bool>,
 }
 
 impl RowBuffers {
     fn resize(&mut self, width: usize) {
         // Allocates only when the width grows (the first frame).
+        self.col_seen.resize(width, false);
         self.idx.resize(width, u32::MAX);
         self.cand.resize(width, 0);
         self.qx.resize(width, 0.0);
@@ -612,6 +647,7 @@ pub struct VoxelGrid {
     touched_cells: Vec<u32>,
     surface_n: Vec<[f32; 2]>,
     cut: Vec<bool>,
+    by_range: Vec<bool>,
     touched_cut: Vec<u32>,
     row: RowBuffers,
     cols: ColumnRays,
@@ -634,6 +670,7 @@ impl VoxelGrid {
             touched_cells: Vec::with_capacity(spec.cell_count()),
             surface_n: vec![[0.0; 2]; spec.cell_count()],
             cut: vec![false; spec.cell_count()],
+            by_range: vec![false; spec.cell_count()],
             touched_cut: Vec::with_capacity(spec.cell_count()),
             row: RowBuffers::default(),
             cols: ColumnRays::default(),
@@ -655,13 +692,24 @@ impl VoxelGrid {
         &self.cells
     }
 
-    /// Ground cells the image's top edge cuts through in the last frame, indexed by
-    /// [`GridSpec::cell`]: those the points of the top [`CUT_ROWS`] rows fall in. There
-    /// the surface leaves the field of view, so what the cell holds is only the lower
-    /// part of what stands there (its height is a lower bound), and the ground beyond
-    /// it along the line of sight is beyond view.
+    /// Ground cells the view's end cuts through in the last frame, indexed by
+    /// [`GridSpec::cell`]: those the points of the top [`CUT_ROWS`] rows fall in, and
+    /// those of the points within [`RANGE_CUT_MM`] of the far range limit. There the
+    /// surface leaves the field of view (or the range), so what the cell holds is only
+    /// part of what stands there (under the image's top edge, its lower part: its
+    /// height is a lower bound), and the ground beyond it along the line of sight is
+    /// beyond view.
     pub fn cut(&self) -> &[bool] {
         &self.cut
+    }
+
+    /// The cells of [`VoxelGrid::cut`] that points within [`RANGE_CUT_MM`] of the far
+    /// range limit fall in, indexed by [`GridSpec::cell`]: the surface leaves the
+    /// sensor's range there. A camera pitched down sees the nearer, upper part of such
+    /// a cell (its farther, lower points lie past the limit): its height proves
+    /// nothing either way.
+    pub fn range_cut(&self) -> &[bool] {
+        &self.by_range
     }
 
     /// Project, transform and bin one depth image (`projector`'s size) in one pass.
@@ -687,6 +735,7 @@ impl VoxelGrid {
         acc.touched.clear();
         for &c in &self.touched_cut {
             self.cut[c as usize] = false;
+            self.by_range[c as usize] = false;
         }
         self.touched_cut.clear();
         let s = self.spec;
@@ -716,6 +765,9 @@ impl VoxelGrid {
         }
         let mut stats = BinStats::default();
         let min_mm = min_mm.max(1);
+        self.row.col_seen.fill(false);
+        // Image columns whose topmost depth in range is still to come.
+        let mut columns_left = width;
         for (v, (row, pixels)) in projector
             .row_table()
             .iter()
@@ -726,12 +778,17 @@ impl VoxelGrid {
             // A row whose every ray runs forward and whose nearest point lies past the
             // corridor's far end (a voxel's margin for rounding) bins nothing: the
             // upper rows of a camera pitched down at ground beyond the corridor.
-            let (valid, nearest_mm) = depths_in_range(pixels, min_mm, max_mm);
+            let topmost_cut = max_mm.saturating_sub(TOPMOST_CUT_MM);
+            let (valid, nearest_mm, near_limit) =
+                depths_in_range(pixels, min_mm, max_mm, topmost_cut);
             let forward = self.cols.x_min + r[0];
             if valid == 0
                 || (forward > 0.0 && t[0] + f32::from(nearest_mm) * 0.001 * forward >= nx + 1.0)
             {
                 stats.points_in += valid;
+                if valid > 0 && columns_left > 0 {
+                    columns_left -= see_columns(&mut self.row.col_seen, pixels, min_mm, max_mm);
+                }
                 continue;
             }
             let rb = &mut self.row;
@@ -751,21 +808,45 @@ impl VoxelGrid {
             stats.points_in += valid;
             if in_grid == 0 {
                 // Nothing to bin (a row looking past the corridor): nor to filter.
+                if columns_left > 0 {
+                    columns_left -= see_columns(&mut rb.col_seen, pixels, min_mm, max_mm);
+                }
                 continue;
             }
             if mixed.is_on() {
                 stats.points_mixed += drop_mixed(mixed, jump, (depth, width), v, rb);
             }
-            if v < CUT_ROWS {
-                // The top rows' points mark the cells where the view is cut.
-                for &i in rb.idx.iter().filter(|&&i| i != u32::MAX) {
+            // The top rows' points mark the cells where the view is cut, and so do
+            // the points within RANGE_CUT_MM of the far range limit, and a column's
+            // topmost point in range within TOPMOST_CUT_MM of it (a surface met at a
+            // grazing angle leaves the band between two rows): past them the surface
+            // leaves the sensor's range.
+            let range_cut = max_mm.saturating_sub(RANGE_CUT_MM);
+            if v < CUT_ROWS || near_limit > 0 {
+                let top = v < CUT_ROWS;
+                for (u, (&i, &d)) in rb.idx.iter().zip(pixels).enumerate() {
+                    let in_range = d >= min_mm && d <= max_mm;
+                    let topmost = in_range && !rb.col_seen[u];
+                    if topmost {
+                        rb.col_seen[u] = true;
+                        columns_left -= 1;
+                    }
+                    let by_range = d >= range_cut || (topmost && d >= topmost_cut);
+                    if i == u32::MAX || !(top || (in_range && by_range)) {
+                        continue;
+                    }
                     let c = (i / s.nz as u32) as usize;
                     if !self.cut[c] {
                         self.cut[c] = true;
                         // Capacity is the cell count: never reallocates.
                         self.touched_cut.push(c as u32);
                     }
+                    self.by_range[c] |= in_range && by_range;
                 }
+            } else if columns_left > 0 {
+                // No point near the range limit: the columns in range here have their
+                // topmost point behind them.
+                columns_left -= see_columns(&mut rb.col_seen, pixels, min_mm, max_mm);
             }
             stats.points_binned += merge_row(&self.row, &mut self.acc);
         }

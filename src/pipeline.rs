@@ -216,7 +216,8 @@ impl Pipeline {
             },
         };
         v.timing_us.memory = t2.elapsed().as_secs_f32() * 1e6;
-        self.analyzer.analyze(cells, remembered, self.grid.cut(), v);
+        let view_end = (self.grid.cut(), self.grid.range_cut());
+        self.analyzer.analyze(cells, remembered, view_end, v);
         if let Some(memory) = &mut self.memory {
             v.memory.remembered_hazards = memory.carry_hazards(v);
         }

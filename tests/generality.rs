@@ -4031,3 +4031,160 @@ fn a_cone_whose_apex_cell_has_its_shadow_beside_it_stops() {
         (Decision::Stop, Side::Left, None),
     );
 }
+
+#[test]
+fn ground_leaving_the_camera_s_range_ends_the_view_there() {
+    use rover_terrain::sim::{self, Terrain};
+    use rover_terrain::Pipeline;
+    // Hand calculation: the default camera, 0.8 m high at x = 0 and pitched 30°, sees
+    // flat ground x metres ahead at depth 0.866·x + 0.4 along its optical axis. With
+    // its range ending at 2.5 m, the ground leaves the range at x = 2.425 m: the cells
+    // where the view ends by range are those holding ground at depths of 2.45-2.5 m
+    // (x from 2.367 m) or the topmost row in range of each column, in every strip.
+    let mut c = Config::default();
+    c.camera.max_range_m = 2.5;
+    let mut p = Pipeline::new(c.clone()).unwrap();
+    let v = p
+        .process(&sim::render(&Terrain::flat(), &c))
+        .unwrap()
+        .clone();
+    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    let (spec, by_range) = (*p.grid().spec(), p.grid().range_cut());
+    let (x_from, x_to) = ((2.45 - 0.4) / 0.866, (2.5f32 - 0.4) / 0.866);
+    // A 20 cm ditch across the corridor from 2.35 m to 2.75 m, with the range ending
+    // where the ground does 2.8 m out: its floor lies in the near rim's shadow, its
+    // far rim in cells the range cuts. They end the gap as seen ground would: the
+    // ditch's floor is unknown ground, not beyond view.
+    let mut far = Config::default();
+    far.camera.max_range_m = 0.866 * 2.8 + 0.4;
+    let ditch = Element::Block {
+        x_m: 2.35,
+        y_m: 0.0,
+        length_m: 0.4,
+        width_m: 2.0,
+        height_m: -0.2,
+    };
+    let d = analyse(vec![ditch], &far);
+    assert_ne!(d.decision, Decision::Go, "{:?}", d.seen_to_m);
+    for iy in 0..spec.ny {
+        let cut: Vec<f32> = (0..spec.nx)
+            .filter(|&ix| by_range[spec.cell(ix, iy)])
+            .map(|ix| spec.x_centre(ix))
+            .collect();
+        assert!(!cut.is_empty(), "strip {iy}: no cell cut by range");
+        for x in cut {
+            let half = 0.5 * spec.voxel_m;
+            assert!(
+                x + half > x_from - 0.01 && x - half < x_to + 0.01,
+                "strip {iy}: a cell at {x} m cut by range, ground leaves it at {x_to} m"
+            );
+        }
+    }
+
+    // `sweep -- oblique 100 3303` #19 with the camera's range ending at 3 m: a 10.8°
+    // descent under the right track met at −29°, seen by a D435-like camera 1.18 m
+    // high pitched 23°, leaves the range 2.8 m out. There a cell held the nearer,
+    // upper part of the descent's side face (its floor past the range), 12 cm over
+    // the track's last cells, and the rover stopped for a `step`. Go; and with a
+    // 0.5 m drop-off across the corridor 2.2 m out, in range, a stop.
+    let mut c = d435_like(
+        mounted([0.1943, -0.0682, 1.1848], [5.584, 23.388, -5.226]),
+        [424.294, 425.901, 425.809, 235.851],
+        0.4352,
+    );
+    c.camera.max_range_m = 3.0;
+    let descent = Element::ramp(
+        1.6986,
+        -0.45,
+        -10.801,
+        -29.369,
+        Extent::Band {
+            from_m: -0.7,
+            to_m: -0.2,
+        },
+    );
+    let [clean, noisy] = analyse_views(vec![descent.clone()], &c, [None, Some(3_303_019)]);
+    for v in [clean, noisy] {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert!(v.seen_to_m.right < 2.9, "{:?}", v.seen_to_m);
+    }
+    let drop = Element::DropOff {
+        x_m: 2.2,
+        depth_m: 0.5,
+    };
+    let v = analyse(vec![descent, drop], &c);
+    assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
+
+    // `sweep -- edges 100 3305` #12 with the range ending at 3 m: a 0.42 m step down
+    // under the left half 1.86 m out, seen by a D435-like camera 0.77 m high pitched
+    // 32° and rolled −10°. Its lower ground is seen only past the edge's shadow, 2.8 m
+    // out, where it leaves the range: cells the range cuts, not seen ground, but
+    // lower still than they read. They prove the drop: a `drop_off`.
+    let mut c = d435_like(
+        mounted([0.1008, -0.0704, 0.7705], [-9.984, 31.750, 0.333]),
+        [423.576, 422.599, 422.279, 235.727],
+        0.397,
+    );
+    c.camera.max_range_m = 3.0;
+    let step_down = Element::Step {
+        x_m: 1.863,
+        height_m: -0.4207,
+        extent: Extent::Left,
+    };
+    for v in analyse_views(vec![step_down], &c, [None, Some(3_305_012)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
+        assert!(
+            v.hazards
+                .iter()
+                .any(|h| h.kind == HazardKind::DropOff && h.side == Side::Left),
+            "{:?}",
+            v.hazards
+        );
+    }
+
+    // `sweep -- hazards 100 3304 random` #9 with the range ending at 2.5 m: a 26 cm
+    // step across the corridor 2.4 m out, seen by a D435-like camera 1.05 m high
+    // pitched 35°. The ground before it and its face's lower 6 cm lie past the range
+    // (cells the range cuts), its face's upper part and its top nearer: seen past
+    // them, they are no view's end, and the step stops the rover.
+    let mut c = d435_like(
+        mounted([0.0452, -0.0605, 1.0463], [1.757, 34.658, 3.052]),
+        [418.676, 419.010, 418.978, 225.324],
+        0.3144,
+    );
+    c.camera.max_range_m = 2.5;
+    let step = Element::Step {
+        x_m: 2.3995,
+        height_m: 0.2638,
+        extent: Extent::Full,
+    };
+    for v in analyse_views(vec![step], &c, [None, Some(3_304_009)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
+    }
+
+    // `sweep -- families 100 3301 random` #82, noisy, with the range ending at 3 m: a
+    // rough 14.4° descent across the corridor, its toe 1.27 m out, seen by a
+    // D435-like camera 0.75 m high, rolled 9.8°: ground met at a grazing angle steps
+    // several centimetres in depth from one row to the next, and one strip's last row
+    // in range lay short of the 5 cm band under the limit; its unseen cells past it
+    // made a `drop_off` 2.9 m out. A column's topmost point in range ends its view.
+    let mut c = d435_like(
+        mounted([0.0686, 0.0388, 0.7521], [9.777, 24.960, -8.852]),
+        [421.969, 421.921, 415.951, 248.446],
+        0.3222,
+    );
+    c.camera.max_range_m = 3.0;
+    let rough_descent = vec![
+        Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m: 0.172_436_640_520_817,
+            seed: 14_109_988_375_644_157_492,
+        },
+        Element::ramp(1.2668, 0.0, -14.379, 0.0, Extent::Full),
+    ];
+    let [clean, noisy] = analyse_views(rough_descent, &c, [None, Some(3_301_082)]);
+    for v in [clean, noisy] {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert_eq!(v.feature.map(|f| f.workcase), Some(8));
+    }
+}

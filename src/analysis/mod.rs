@@ -127,6 +127,10 @@ pub(crate) struct Frame<'a> {
     /// sight). What is seen of them is only what lies below the edge: their height is
     /// a lower bound.
     pub past: &'a [bool],
+    /// Cells the far range limit cuts (see [`Analyzer::analyze`]; empty: none). The
+    /// frame's own such cell is not `seen`, but its points are there: what it holds
+    /// lies at or above the surface there.
+    pub range_cut: &'a [bool],
     /// Expected, unseen, and beyond the sensor's horizon: the line of sight to them
     /// crosses a cell where the surface leaves the image.
     pub beyond: &'a [bool],
@@ -142,13 +146,14 @@ pub(crate) struct Frame<'a> {
 
 impl<'a> Frame<'a> {
     /// The frame `grid` holds, as `view` saw it.
-    fn new(fixed: &'a Fixed, view: &'a View, cells: &'a [Cell]) -> Self {
+    fn new(fixed: &'a Fixed, view: &'a View, cells: &'a [Cell], range_cut: &'a [bool]) -> Self {
         Frame {
             spec: &fixed.spec,
             cells,
             seen: &view.seen,
             shadowed: &view.shadowed,
             past: &view.past,
+            range_cut,
             beyond: &view.beyond,
             expected: &fixed.expected,
             region: &fixed.region,
@@ -296,24 +301,31 @@ impl Analyzer {
     /// terrain memory (0 when it is the frame's). Remembered cells out of the camera's
     /// view then count in the seen fraction and the too-little-seen rule, each by its
     /// confidence: ground seen long ago or from far weighs less than ground seen now.
+    ///
+    /// `(cut, by_range)`: the cells where the view ends ([`crate::grid::VoxelGrid::cut`])
+    /// and, of them, those the far range limit cuts
+    /// ([`crate::grid::VoxelGrid::range_cut`]; empty: none). A cell the range limit
+    /// cuts holds the nearer, upper part of what stands there, its height biased high;
+    /// the frame's own such cells at a strip's far end (none seen whole past them)
+    /// count as not seen (past the horizon: beyond view).
     pub fn analyze(
         &mut self,
         cells: &[Cell],
         remembered: Option<&[f32]>,
-        cut: &[bool],
+        (cut, by_range): (&[bool], &[bool]),
         verdict: &mut Verdict,
     ) {
         let t0 = Instant::now();
         verdict.hazards.clear();
         verdict.feature = None;
-        let (seen_expected, nearest_unseen) = self.mark_seen(cells);
+        let (seen_expected, nearest_unseen) = self.mark_seen(cells, remembered, by_range);
         let (known, counted) = self.remembered_weight(cells, remembered);
         let seen_weight = seen_expected as f32 + known;
         verdict.seen_fraction = seen_weight / (self.fixed.expected_count + counted) as f32;
         self.mark_past(cut);
         let visible = self.fixed.expected_count - self.mark_hidden() + counted;
         verdict.seen_to_m = self.seen_to();
-        let frame = Frame::new(&self.fixed, &self.view, cells);
+        let frame = Frame::new(&self.fixed, &self.view, cells, by_range);
         let scratch = &mut self.scratch;
         crossing::steps_and_slopes(&frame, &mut scratch.strip, &mut scratch.surface, verdict);
         crossing::hidden_tops(&frame, &scratch.surface, verdict);
@@ -362,15 +374,44 @@ impl Analyzer {
 
     /// Which cells have enough points to count as seen; of the expected ones, how
     /// many are seen and the nearest row start (metres) of an unseen one.
-    fn mark_seen(&mut self, cells: &[Cell]) -> (usize, f32) {
+    fn mark_seen(
+        &mut self,
+        cells: &[Cell],
+        remembered: Option<&[f32]>,
+        by_range: &[bool],
+    ) -> (usize, f32) {
         let fx = &self.fixed;
         let min_pts = fx.cfg.analysis.min_points_per_cell;
         let mut seen_expected = 0usize;
         let mut nearest_unseen = f32::INFINITY;
         let v = &mut self.view;
         v.highest = f32::NEG_INFINITY;
-        for (i, ((s, shade), c)) in v.seen.iter_mut().zip(&mut v.shade).zip(cells).enumerate() {
+        // The frame's own cell that the range limit cuts: part of it, biased high.
+        let partial =
+            |i: usize| by_range.get(i) == Some(&true) && remembered.is_none_or(|r| r[i] == 0.0);
+        for (s, c) in v.seen.iter_mut().zip(cells) {
             *s = c.n >= min_pts;
+        }
+        // Such cells at a strip's far end, with no cell seen whole past them, are where
+        // its view ends: not seen. Where the strip sees more past them, the surface
+        // came back into range rising (a step's face and top are nearer than the
+        // ground at its foot): they are part of a climb, and stay.
+        if !by_range.is_empty() {
+            let s = &fx.spec;
+            for iy in 0..s.ny {
+                for ix in (0..s.nx).rev() {
+                    let i = s.cell(ix, iy);
+                    if !v.seen[i] {
+                        continue;
+                    }
+                    if !partial(i) {
+                        break;
+                    }
+                    v.seen[i] = false;
+                }
+            }
+        }
+        for (i, ((s, shade), c)) in v.seen.iter_mut().zip(&mut v.shade).zip(cells).enumerate() {
             *shade = if *s { c.top } else { f32::NEG_INFINITY };
             v.highest = v.highest.max(*shade);
             if fx.expected[i] {
@@ -456,7 +497,7 @@ impl Analyzer {
     /// The frame as the last [`Analyzer::analyze`] saw it (for tests of the steps).
     #[cfg(test)]
     pub(crate) fn frame<'a>(&'a self, grid: &'a VoxelGrid) -> Frame<'a> {
-        Frame::new(&self.fixed, &self.view, grid.cells())
+        Frame::new(&self.fixed, &self.view, grid.cells(), grid.range_cut())
     }
 }
 
@@ -728,7 +769,7 @@ mod tests {
         let cut = vec![false; spec.cell_count()];
         let seen_to = |a: &mut Analyzer, cells: &[Cell]| {
             let mut v = Verdict::default();
-            a.analyze(cells, None, &cut, &mut v);
+            a.analyze(cells, None, (&cut, &[]), &mut v);
             v.seen_to_m
         };
         let mut cells = flat(&spec, &expected, 0);
@@ -765,7 +806,7 @@ mod tests {
         let cells = flat(&spec, &expected, extra);
         let mut v = Verdict::default();
         // The frame alone: everything in view seen.
-        a.analyze(&cells, None, &cut, &mut v);
+        a.analyze(&cells, None, (&cut, &[]), &mut v);
         assert_eq!((v.decision, v.seen_fraction), (Decision::Go, 1.0));
         // Remembered cells out of view at confidence k weigh k each.
         for k in [1.0f32, 0.5, 0.1] {
@@ -774,7 +815,7 @@ mod tests {
                 .zip(&cells)
                 .map(|(&ex, c)| if !ex && c.n > 0 { k } else { 0.0 })
                 .collect();
-            a.analyze(&cells, Some(&confidence), &cut, &mut v);
+            a.analyze(&cells, Some(&confidence), (&cut, &[]), &mut v);
             let want = (e + extra as f32 * k) / (e + extra as f32);
             assert!((v.seen_fraction - want).abs() < 1e-5, "{k}: {v:?}");
             assert_eq!(v.decision, Decision::Go);

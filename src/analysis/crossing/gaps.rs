@@ -26,6 +26,12 @@ use crate::verdict::{Hazard, HazardKind, Verdict};
 /// - Neither is a gap whose every cell fell between the camera's pixel rows
 ///   ([`between_rows`]): ground there, continued from before the gap, would be
 ///   crossed by under two rows per cell, and the strips on both sides see it.
+/// - A gap ending at a cell the far range limit cuts ([`Frame::range_cut`], with
+///   points, not seen ground: they are the nearer, upper part of what is there) is
+///   judged as one ending at seen ground, that cell's height the ground beyond: the
+///   lower ground past a 0.42 m step down, seen only where it left a 3 m range,
+///   proves the drop (`sweep -- edges 100 3305` #12 with `MAX_RANGE=3`), and a
+///   ditch's far rim there leaves its floor unknown ground.
 ///
 /// A track cell's height is the surface its strip followed (`surface`, from
 /// [`steps_and_slopes`](super::steps_and_slopes); NaN elsewhere), other cells' their mean.
@@ -57,10 +63,18 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         for ix in 0..=s.nx {
             let c = (ix < s.nx).then(|| s.cell(ix, iy));
             let seen_here = c.is_some_and(|c| f.seen[c] && !spilt(c));
-            if seen_here || ix == s.nx {
+            // A cell the far range limit cuts, with points: not seen ground (it holds
+            // the nearer, upper part of what is there), but it ends a gap as seen
+            // ground does. Read a wheel radius below the ground before the gap, what
+            // is there is lower still: a drop.
+            let range_end = c.is_some_and(|c| {
+                f.range_cut.get(c) == Some(&true)
+                    && f.cells[c].n >= f.cfg.analysis.min_points_per_cell
+            });
+            if seen_here || range_end || ix == s.nx {
                 if let Some((start, len)) = run.take() {
                     if len >= min_run {
-                        let after = c.filter(|_| seen_here).map(ground);
+                        let after = c.filter(|_| seen_here || range_end).map(ground);
                         let kind = if before.last().is_none()
                             && seen_here
                             && below_view(f, iy, start, ix, ground, tan_max)
