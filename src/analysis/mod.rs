@@ -122,10 +122,11 @@ pub(crate) struct Frame<'a> {
     /// Expected, unseen, and in the shadow of something seen (see
     /// [`visibility::explained`]).
     pub shadowed: &'a [bool],
-    /// Cells at or past the sensor's horizon: the image's top edge cuts through them,
-    /// or through a cell in front of them (along their strip or their line of
-    /// sight). What is seen of them is only what lies below the edge: their height is
-    /// a lower bound.
+    /// Cells at or past the sensor's horizon: the image's top edge or the far range
+    /// limit cuts through them ([`crate::grid::VoxelGrid::cut`]), or through a cell in
+    /// front of them (along their strip or their line of sight). What is seen of them
+    /// under the image's top edge is only what lies below it: their height is a lower
+    /// bound (for the range's cut, see [`Frame::range_cut`]).
     pub past: &'a [bool],
     /// Cells the far range limit cuts (see [`Analyzer::analyze`]; empty: none). The
     /// frame's own such cell is not `seen`, but its points are there: what it holds
