@@ -694,7 +694,8 @@ impl VoxelGrid {
 
     /// Ground cells the view's end cuts through in the last frame, indexed by
     /// [`GridSpec::cell`]: those the points of the top [`CUT_ROWS`] rows fall in, and
-    /// those of the points within [`RANGE_CUT_MM`] of the far range limit. There the
+    /// those of the points within [`RANGE_CUT_MM`] of the far range limit or of an
+    /// image column's topmost point in range within [`TOPMOST_CUT_MM`] of it. There the
     /// surface leaves the field of view (or the range), so what the cell holds is only
     /// part of what stands there (under the image's top edge, its lower part: its
     /// height is a lower bound), and the ground beyond it along the line of sight is
@@ -703,8 +704,8 @@ impl VoxelGrid {
         &self.cut
     }
 
-    /// The cells of [`VoxelGrid::cut`] that points within [`RANGE_CUT_MM`] of the far
-    /// range limit fall in, indexed by [`GridSpec::cell`]: the surface leaves the
+    /// The cells of [`VoxelGrid::cut`] that the far range limit cuts ([`RANGE_CUT_MM`],
+    /// [`TOPMOST_CUT_MM`]), indexed by [`GridSpec::cell`]: the surface leaves the
     /// sensor's range there. A camera pitched down sees the nearer, upper part of such
     /// a cell (its farther, lower points lie past the limit): its height proves
     /// nothing either way.

@@ -129,8 +129,8 @@ pub(crate) struct Frame<'a> {
     /// bound (for the range's cut, see [`Frame::range_cut`]).
     pub past: &'a [bool],
     /// Cells the far range limit cuts (see [`Analyzer::analyze`]; empty: none). The
-    /// frame's own such cell is not `seen`, but its points are there: what it holds
-    /// lies at or above the surface there.
+    /// frame's own such cells at a strip's far end are not `seen`, but their points
+    /// are there: what each holds lies at or above the surface there.
     pub range_cut: &'a [bool],
     /// Expected, unseen, and beyond the sensor's horizon: the line of sight to them
     /// crosses a cell where the surface leaves the image.
