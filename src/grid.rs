@@ -611,6 +611,85 @@ struct ColumnRays {
     x_min: f32,
 }
 
+/// The depth bounds that decide which of a row's points mark a cut cell (mm).
+#[derive(Debug, Clone, Copy)]
+struct CutLimits {
+    /// The sensor's range, `[min_mm, max_mm]`.
+    min_mm: u16,
+    max_mm: u16,
+    /// Points at or past this mark their cell cut by range ([`RANGE_CUT_MM`]).
+    range_mm: u16,
+    /// An image column's topmost point in range at or past this marks its cell cut by
+    /// range ([`TOPMOST_CUT_MM`]).
+    topmost_mm: u16,
+}
+
+/// The ground cells where the view is cut in the current frame ([`VoxelGrid::cut`],
+/// [`VoxelGrid::range_cut`]), with the list of those marked so that clearing them
+/// costs what marking did.
+#[derive(Debug, Clone)]
+struct ViewCut {
+    cut: Vec<bool>,
+    by_range: Vec<bool>,
+    touched: Vec<u32>,
+}
+
+impl ViewCut {
+    fn new(cells: usize) -> Self {
+        ViewCut {
+            cut: vec![false; cells],
+            by_range: vec![false; cells],
+            touched: Vec::with_capacity(cells),
+        }
+    }
+
+    /// Unmark every cell the last frame marked.
+    fn clear(&mut self) {
+        for &c in &self.touched {
+            self.cut[c as usize] = false;
+            self.by_range[c as usize] = false;
+        }
+        self.touched.clear();
+    }
+
+    /// Mark the cells one indexed row's points cut: every point's when the row is one
+    /// of the top [`CUT_ROWS`] (`top`); otherwise those within [`RANGE_CUT_MM`] of the
+    /// far range limit, and a column's topmost point in range within
+    /// [`TOPMOST_CUT_MM`] of it (a surface met at a grazing angle leaves the band
+    /// between two rows); past them the surface leaves the sensor's range. Marks the
+    /// columns whose topmost point in range this row holds in `rb.col_seen` and
+    /// returns how many there were. `nz` is the grid's column height in voxels.
+    fn mark_row(
+        &mut self,
+        rb: &mut RowBuffers,
+        pixels: &[u16],
+        limits: CutLimits,
+        top: bool,
+        nz: usize,
+    ) -> usize {
+        let mut newly_seen = 0;
+        for ((&i, &d), seen) in rb.idx.iter().zip(pixels).zip(rb.col_seen.iter_mut()) {
+            let in_range = d >= limits.min_mm && d <= limits.max_mm;
+            let topmost = in_range && !*seen;
+            *seen |= topmost;
+            newly_seen += usize::from(topmost);
+            let by_range =
+                in_range && (d >= limits.range_mm || (topmost && d >= limits.topmost_mm));
+            if i == u32::MAX || !(top || by_range) {
+                continue;
+            }
+            let c = (i / nz as u32) as usize;
+            if !self.cut[c] {
+                self.cut[c] = true;
+                // Capacity is the cell count: never reallocates.
+                self.touched.push(c as u32);
+            }
+            self.by_range[c] |= by_range;
+        }
+        newly_seen
+    }
+}
+
 /// One image row's per-pixel voxel indices and positions (voxel units).
 #[derive(Debug, Clone, Default)]
 struct RowBuffers {
@@ -646,9 +725,7 @@ pub struct VoxelGrid {
     cells: Vec<Cell>,
     touched_cells: Vec<u32>,
     surface_n: Vec<[f32; 2]>,
-    cut: Vec<bool>,
-    by_range: Vec<bool>,
-    touched_cut: Vec<u32>,
+    view_cut: ViewCut,
     row: RowBuffers,
     cols: ColumnRays,
 }
@@ -669,9 +746,7 @@ impl VoxelGrid {
             cells: vec![Cell::EMPTY; spec.cell_count()],
             touched_cells: Vec::with_capacity(spec.cell_count()),
             surface_n: vec![[0.0; 2]; spec.cell_count()],
-            cut: vec![false; spec.cell_count()],
-            by_range: vec![false; spec.cell_count()],
-            touched_cut: Vec::with_capacity(spec.cell_count()),
+            view_cut: ViewCut::new(spec.cell_count()),
             row: RowBuffers::default(),
             cols: ColumnRays::default(),
         }
@@ -701,7 +776,7 @@ impl VoxelGrid {
     /// height is a lower bound), and the ground beyond it along the line of sight is
     /// beyond view.
     pub fn cut(&self) -> &[bool] {
-        &self.cut
+        &self.view_cut.cut
     }
 
     /// The cells of [`VoxelGrid::cut`] that the far range limit cuts ([`RANGE_CUT_MM`],
@@ -710,7 +785,7 @@ impl VoxelGrid {
     /// a cell (its farther, lower points lie past the limit): its height proves
     /// nothing either way.
     pub fn range_cut(&self) -> &[bool] {
-        &self.by_range
+        &self.view_cut.by_range
     }
 
     /// Project, transform and bin one depth image (`projector`'s size) in one pass.
@@ -734,11 +809,7 @@ impl VoxelGrid {
             (acc.sums[i as usize], acc.zmax[i as usize]) = (Acc::default(), NO_POINT);
         }
         acc.touched.clear();
-        for &c in &self.touched_cut {
-            self.cut[c as usize] = false;
-            self.by_range[c as usize] = false;
-        }
-        self.touched_cut.clear();
+        self.view_cut.clear();
         let s = self.spec;
         let inv = 1.0 / s.voxel_m;
         let o = projector.origin();
@@ -766,6 +837,12 @@ impl VoxelGrid {
         }
         let mut stats = BinStats::default();
         let min_mm = min_mm.max(1);
+        let limits = CutLimits {
+            min_mm,
+            max_mm,
+            range_mm: max_mm.saturating_sub(RANGE_CUT_MM),
+            topmost_mm: max_mm.saturating_sub(TOPMOST_CUT_MM),
+        };
         self.row.col_seen.fill(false);
         // Image columns whose topmost depth in range is still to come.
         let mut columns_left = width;
@@ -779,9 +856,8 @@ impl VoxelGrid {
             // A row whose every ray runs forward and whose nearest point lies past the
             // corridor's far end (a voxel's margin for rounding) bins nothing: the
             // upper rows of a camera pitched down at ground beyond the corridor.
-            let topmost_cut = max_mm.saturating_sub(TOPMOST_CUT_MM);
             let (valid, nearest_mm, near_limit) =
-                depths_in_range(pixels, min_mm, max_mm, topmost_cut);
+                depths_in_range(pixels, min_mm, max_mm, limits.topmost_mm);
             let forward = self.cols.x_min + r[0];
             if valid == 0
                 || (forward > 0.0 && t[0] + f32::from(nearest_mm) * 0.001 * forward >= nx + 1.0)
@@ -817,33 +893,10 @@ impl VoxelGrid {
             if mixed.is_on() {
                 stats.points_mixed += drop_mixed(mixed, jump, (depth, width), v, rb);
             }
-            // The top rows' points mark the cells where the view is cut, and so do
-            // the points within RANGE_CUT_MM of the far range limit, and a column's
-            // topmost point in range within TOPMOST_CUT_MM of it (a surface met at a
-            // grazing angle leaves the band between two rows): past them the surface
-            // leaves the sensor's range.
-            let range_cut = max_mm.saturating_sub(RANGE_CUT_MM);
             if v < CUT_ROWS || near_limit > 0 {
-                let top = v < CUT_ROWS;
-                for (u, (&i, &d)) in rb.idx.iter().zip(pixels).enumerate() {
-                    let in_range = d >= min_mm && d <= max_mm;
-                    let topmost = in_range && !rb.col_seen[u];
-                    if topmost {
-                        rb.col_seen[u] = true;
-                        columns_left -= 1;
-                    }
-                    let by_range = d >= range_cut || (topmost && d >= topmost_cut);
-                    if i == u32::MAX || !(top || (in_range && by_range)) {
-                        continue;
-                    }
-                    let c = (i / s.nz as u32) as usize;
-                    if !self.cut[c] {
-                        self.cut[c] = true;
-                        // Capacity is the cell count: never reallocates.
-                        self.touched_cut.push(c as u32);
-                    }
-                    self.by_range[c] |= in_range && by_range;
-                }
+                columns_left -= self
+                    .view_cut
+                    .mark_row(rb, pixels, limits, v < CUT_ROWS, s.nz);
             } else if columns_left > 0 {
                 // No point near the range limit: the columns in range here have their
                 // topmost point behind them.
