@@ -7,9 +7,12 @@
 use rover_terrain::sim::{Element, Extent, StoneShape};
 use rover_terrain::{Config, Decision, HazardKind, Side, Verdict};
 
+#[path = "common/hazards.rs"]
+mod hazards;
 #[path = "common/scenes.rs"]
 mod scenes;
 
+use hazards::hazard;
 use scenes::{analyse, analyse_noisy, analyse_views, LEFT_TRACK, RIGHT_TRACK};
 
 fn assert_go(v: &Verdict, wc: u8, d: f64, g: f64, alpha: Option<f64>) {
@@ -350,11 +353,7 @@ fn a_post_whose_front_the_view_ends_on_is_a_step_in_one_strip_too() {
         [416.36, 416.568, 424.053, 235.159],
         0.4397,
     );
-    let step_right = |v: &Verdict| {
-        v.hazards
-            .iter()
-            .any(|h| h.kind == HazardKind::Step && h.side == Side::Right)
-    };
+    let step_right = |v: &Verdict| hazard(v, HazardKind::Step, Side::Right).is_some();
     for width in [0.05, 0.08] {
         let post = vec![block_at(1.94, -0.45, 0.3, width, 0.2)];
         for v in analyse_views(post, &c, [None, Some(7)]) {
@@ -2133,9 +2132,7 @@ fn a_step_a_cell_or_two_past_the_images_bottom_edge_is_never_go() {
         for v in analyse_views(vec![step(x, h)], &c, [None, Some(18)]) {
             assert_eq!(v.decision, Decision::Stop, "{x} {h}: {:?}", v.feature);
             assert!(
-                v.hazards
-                    .iter()
-                    .any(|h| h.side == Side::Right && h.kind == HazardKind::Step),
+                hazard(&v, HazardKind::Step, Side::Right).is_some(),
                 "{x} {h}: {:?}",
                 v.hazards
             );
@@ -2533,9 +2530,7 @@ fn a_face_measured_steeper_than_the_rover_climbs_is_never_go() {
     ] {
         assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
         assert!(
-            v.hazards
-                .iter()
-                .any(|h| h.kind == HazardKind::Slope && h.side == Side::Left),
+            hazard(&v, HazardKind::Slope, Side::Left).is_some(),
             "{:?}",
             v.hazards
         );
@@ -4134,9 +4129,7 @@ fn ground_leaving_the_camera_s_range_ends_the_view_there() {
     for v in analyse_views(vec![step_down], &c, [None, Some(3_305_012)]) {
         assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
         assert!(
-            v.hazards
-                .iter()
-                .any(|h| h.kind == HazardKind::DropOff && h.side == Side::Left),
+            hazard(&v, HazardKind::DropOff, Side::Left).is_some(),
             "{:?}",
             v.hazards
         );

@@ -9,16 +9,12 @@ use rover_terrain::{Config, Decision, HazardKind, Pipeline, Side, Verdict};
 use rover_terrain_drivers::DepthFrame;
 use std::sync::OnceLock;
 
+#[path = "common/hazards.rs"]
+mod hazards;
+use hazards::hazard;
+
 /// Forward step per frame of the straight drives, metres.
 const STEP: f64 = 0.05;
-
-/// The nearest hazard of `kind` on `side`, metres.
-fn hazard(v: &Verdict, kind: HazardKind, side: Side) -> Option<f32> {
-    v.hazards
-        .iter()
-        .find(|h| h.kind == kind && h.side == side)
-        .map(|h| h.distance_m)
-}
 
 /// The frames of a drive over `terrain` from the origin: before each frame after the
 /// first the rover goes `steps[k - 1].0` metres forward, then turns `steps[k - 1].1`
