@@ -44,6 +44,13 @@
 //! before it (`RELIEF #N ...`, sampled from the height field); a stop where a go was
 //! due prints it for every stone and rock.
 //!
+//! Where a stone, rock or block in the corridor has its top out of view
+//! (`sim::sight::unseen_tops`: outside the image or its top rows, or out of range),
+//! how high it stands is not seen: a verdict not go whose every hazard lies within
+//! `TOP_REACH_M` of such an obstacle along x, on its side, passes (a go is judged as
+//! usual, and a go where a stop was due fails); a line before the last counts those
+//! frames, and with `ALL=1` a line `TOP #N ...` names each such obstacle.
+//!
 //! `MAX_RANGE=M` sets every rig's far range limit (`camera.max_range_m`, 4.5 m as
 //! drawn) to `M` metres after the scene is drawn: where it falls inside the corridor,
 //! surfaces leave the sensor's range there. A scene's obstacle may then lie out of
@@ -75,51 +82,97 @@ use rover_terrain::validate::{compare, CLEAN, NOISY};
 use rover_terrain::verdict::Hazard;
 use rover_terrain::{Config, Decision, Pipeline};
 
-fn main() {
-    let args: Vec<String> = std::env::args().collect();
-    let mode = args.get(1).map_or("workcases", String::as_str);
-    let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(80);
-    let seed: u64 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(1);
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    // ONLY=i,j,... renders just those scenes (the draws before them still happen).
-    let only: Option<Vec<usize>> = std::env::var("ONLY")
-        .ok()
-        .map(|v| v.split(',').filter_map(|s| s.parse().ok()).collect());
-    let random_rig = args.get(4).map(String::as_str) == Some("random");
-    // FLYING=FRACTION: mix that fraction of the noisy frames' edge pixels too.
-    let flying: Option<f64> = std::env::var("FLYING").ok().and_then(|v| v.parse().ok());
-    // `families` mode: just this family (its index in `families::Family::ALL`, then
-    // `LATER`: `families::Family::by_index`).
-    let family = args.get(5).and_then(|s| s.parse::<usize>().ok());
-    let (mut failures, mut total, mut false_go, mut excused) = (0, 0, 0, (0, 0));
-    let exact = std::env::var("EXACT").is_ok_and(|v| v == "1");
-    // ALL=1: every frame's verdict, passed or not (see the module doc).
-    let all = std::env::var("ALL").is_ok_and(|v| v == "1");
-    // WANT=1: also each frame's expectation, on a line of its own.
-    let want_too = std::env::var("WANT").is_ok_and(|v| v == "1");
-    let mut not_drawn = 0;
-    // APPROACH=BACK_M,STEP_M,AHEAD_M: drive up to each false go (see the module doc).
-    let approach: Option<Drive> = std::env::var("APPROACH").ok().map(|v| {
-        let p: Vec<f64> = v.split(',').filter_map(|s| s.parse().ok()).collect();
-        match p[..] {
-            [back, step, ahead] if back >= 0.0 && step > 0.0 && ahead > 0.0 => {
-                Drive { back, step, ahead }
-            }
-            _ => Drive {
-                back: 1.0,
-                step: 0.1,
-                ahead: 1.0,
-            },
+/// What a sweep run draws and reports: its arguments and environment (see the module
+/// doc).
+struct Options {
+    /// The scene mode (first argument; `workcases` when absent).
+    mode: String,
+    /// How many scenes (second argument; 80).
+    n: usize,
+    /// The draws' seed (third argument; 1).
+    seed: u64,
+    /// Fourth argument `random`: a random mount and camera per scene.
+    random_rig: bool,
+    /// Fifth argument, `families` modes: just this family (its index in
+    /// `families::Family::ALL`, then `LATER`: `families::Family::by_index`).
+    family: Option<usize>,
+    /// ONLY=i,j,...: render just those scenes (the draws before them still happen).
+    only: Option<Vec<usize>>,
+    /// FLYING=FRACTION: mix that fraction of the noisy frames' edge pixels too.
+    flying: Option<f64>,
+    /// EXACT=1: render with the second renderer.
+    exact: bool,
+    /// ALL=1: print every frame's verdict, passed or not.
+    all: bool,
+    /// WANT=1: also each frame's expectation, on a line of its own.
+    want_too: bool,
+    /// APPROACH=BACK_M,STEP_M,AHEAD_M (or anything else for 1,0.1,1): drive up to
+    /// each false go.
+    approach: Option<Drive>,
+    /// MAX_RANGE=M: every rig's camera sees to M metres.
+    max_range: Option<f64>,
+}
+
+impl Options {
+    fn parse() -> Self {
+        let args: Vec<String> = std::env::args().collect();
+        let env = |name: &str| std::env::var(name).ok();
+        let on = |name: &str| env(name).is_some_and(|v| v == "1");
+        Options {
+            mode: args.get(1).map_or("workcases", String::as_str).to_string(),
+            n: args.get(2).and_then(|s| s.parse().ok()).unwrap_or(80),
+            seed: args.get(3).and_then(|s| s.parse().ok()).unwrap_or(1),
+            random_rig: args.get(4).map(String::as_str) == Some("random"),
+            family: args.get(5).and_then(|s| s.parse::<usize>().ok()),
+            only: env("ONLY").map(|v| v.split(',').filter_map(|s| s.parse().ok()).collect()),
+            flying: env("FLYING").and_then(|v| v.parse().ok()),
+            exact: on("EXACT"),
+            all: on("ALL"),
+            want_too: on("WANT"),
+            approach: env("APPROACH").map(|v| {
+                let p: Vec<f64> = v.split(',').filter_map(|s| s.parse().ok()).collect();
+                match p[..] {
+                    [back, step, ahead] if back >= 0.0 && step > 0.0 && ahead > 0.0 => {
+                        Drive { back, step, ahead }
+                    }
+                    _ => Drive {
+                        back: 1.0,
+                        step: 0.1,
+                        ahead: 1.0,
+                    },
+                }
+            }),
+            max_range: env("MAX_RANGE").map(|v| {
+                v.parse()
+                    .ok()
+                    .filter(|m: &f64| m.is_finite() && *m > 1.0)
+                    .expect("MAX_RANGE is a range in metres over 1")
+            }),
         }
-    });
+    }
+}
+
+fn main() {
+    let Options {
+        mode,
+        n,
+        seed,
+        random_rig,
+        family,
+        only,
+        flying,
+        exact,
+        all,
+        want_too,
+        approach,
+        max_range,
+    } = Options::parse();
+    let mode = mode.as_str();
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let (mut failures, mut total, mut false_go, mut excused) = (0, 0, 0, (0, 0));
+    let mut top_excused = 0;
+    let mut not_drawn = 0;
     let mut approaches = Approaches::default();
-    // MAX_RANGE=M: every rig's camera sees to M metres (see the module doc).
-    let max_range: Option<f64> = std::env::var("MAX_RANGE").ok().map(|v| {
-        v.parse()
-            .ok()
-            .filter(|m: &f64| m.is_finite() && *m > 1.0)
-            .expect("MAX_RANGE is a range in metres over 1")
-    });
     for i in 0..n {
         let (terrain, want, mut config, tol) = draw(&mut rng, mode, i, random_rig, family);
         if let Some(m) = max_range {
@@ -139,6 +192,9 @@ fn main() {
             sim::render(&terrain, &config)
         };
         let unseen = unseen_at_grazing(mode, &want, &terrain, &config);
+        // A stone, rock or block whose top the camera cannot see: how high it stands
+        // is not seen, so any verdict but go is right (a go is judged as usual).
+        let unseen_tops = sim::sight::unseen_tops(&terrain, &config);
         for noisy in [false, true] {
             let mut f = frame.clone();
             if noisy {
@@ -161,7 +217,17 @@ fn main() {
                 excused.0 += 1;
                 excused.1 += usize::from(v.decision != Decision::Go);
             }
-            let fails = if unseen {
+            // Not go for an obstacle whose top is out of view: every hazard within
+            // TOP_REACH_M of one such, on its side.
+            let top_excused_here = v.decision != Decision::Go
+                && !v.hazards.is_empty()
+                && v.hazards.iter().all(|h| {
+                    unseen_tops
+                        .iter()
+                        .any(|o| o.explains(h, &config.rover, TOP_REACH_M))
+                });
+            top_excused += usize::from(top_excused_here);
+            let fails = if unseen || top_excused_here {
                 Vec::new()
             } else if mode == "edges" {
                 // Stop or unknown: a ditch whose floor lies in its own shadow is unknown
@@ -182,6 +248,16 @@ fn main() {
             }
             if want_too {
                 println!("want #{i} noisy={noisy} {want:?}");
+            }
+            for o in unseen_tops.iter().filter(|_| all) {
+                println!(
+                    "TOP #{i} noisy={noisy} {:?}: a top at ({:.2}, {:.2}, {:.3}) m out of view{}",
+                    v.decision,
+                    o.top.x,
+                    o.top.y,
+                    o.top.z,
+                    if top_excused_here { ", excused" } else { "" }
+                );
             }
             total += 1;
             if v.decision == Decision::Go && want.verdict != Decision::Go {
@@ -218,6 +294,9 @@ fn main() {
     if let Some(drive) = approach {
         approaches.report(drive);
     }
+    println!(
+        "{top_excused} frames not go for a stone, rock or block whose top is out of view (passed)"
+    );
     if mode == "oblique" || FAMILY_MODES.contains(&mode) {
         println!(
             "{} frames met a surface under {GRAZING_DEG}° (any verdict passes), {} of them not go",
@@ -225,6 +304,11 @@ fn main() {
         );
     }
 }
+
+/// How far along x from an obstacle whose top is out of view a hazard may lie and be
+/// its (`sim::sight::UnseenTop::explains`), metres: the cells before its foot that
+/// its front's first centimetres rise in, and a cell's rounding.
+const TOP_REACH_M: f64 = 0.3;
 
 /// The modes that draw `sim::families`' scenes: as drawn, restyled, with sloping
 /// band sides, with bands wider than the track.

@@ -7,6 +7,7 @@ pub mod drive;
 pub mod families;
 mod noise;
 pub mod random;
+pub mod sight;
 mod terrain;
 
 pub use catalogue::{catalogue, Expectation, Scene, SceneConfig, Tolerance, CLEAN, NOISY};

@@ -1,0 +1,208 @@
+//! What the camera can see of a drawn scene, by hand: from the terrain's elements and
+//! the camera model alone, never from a rendered frame or the analysis. The sweeps
+//! use it to tell an obstacle whose height the camera cannot measure from one it
+//! misjudged.
+
+use nalgebra::Vector3;
+
+use super::terrain::{Element, Terrain};
+use crate::config::{Config, RoverConfig};
+use crate::grid::CUT_ROWS;
+use crate::projection::Projector;
+use crate::verdict::{Hazard, Side};
+
+/// A stone, rock or block whose top the camera cannot see ([`unseen_tops`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnseenTop {
+    /// Its top, rover frame, metres.
+    pub top: Vector3<f64>,
+    /// Its footprint along x, `[near, far]`, metres.
+    pub x_m: [f64; 2],
+    /// Its footprint across, `[right, left]` (y), metres.
+    pub y_m: [f64; 2],
+}
+
+impl UnseenTop {
+    /// Whether `hazard` may be this obstacle's: within `reach_m` (metres) of its
+    /// footprint along x, on a side ([`Side`]'s band of `rover`) its footprint
+    /// reaches into.
+    pub fn explains(&self, hazard: &Hazard, rover: &RoverConfig, reach_m: f64) -> bool {
+        let d = f64::from(hazard.distance_m);
+        let (b, o) = (rover.belly_half_width_m, rover.track_outer_m);
+        let [lo, hi] = match hazard.side {
+            Side::Left => [b, o],
+            Side::Centre => [-b, b],
+            Side::Right => [-o, -b],
+        };
+        (self.x_m[0] - reach_m..=self.x_m[1] + reach_m).contains(&d)
+            && self.y_m[0] < hi
+            && self.y_m[1] > lo
+    }
+}
+
+/// The stones, rocks and blocks of `terrain` within `config`'s corridor (their
+/// footprint reaching into `x < corridor_length_m`, `|y| < track_outer_m`) whose top
+/// the camera cannot see. A stone's or rock's top is its apex (the terrain's height
+/// at its centre, with whatever lies under it); a block's is the near edge of its top
+/// face. It is out of view when it lies behind the camera, outside the image, in the
+/// image's top [`CUT_ROWS`] rows (where the analysis takes the view as cut), or
+/// outside the sensor's range `[min_range_m, max_range_m]` (optical depth). How high
+/// such an obstacle stands is then not seen, only that it reaches the view's end.
+/// Occlusion by nearer terrain is not considered.
+pub fn unseen_tops(terrain: &Terrain, config: &Config) -> Vec<UnseenTop> {
+    let cam = &config.camera;
+    let p = Projector::new(config, cam.width as usize, cam.height as usize);
+    let (w, h) = (f64::from(cam.width), f64::from(cam.height));
+    let in_view = |top: Vector3<f64>| {
+        p.project(top).is_some_and(|(u, v, z)| {
+            (0.0..=w - 1.0).contains(&u)
+                && (CUT_ROWS as f64..=h - 1.0).contains(&v)
+                && (cam.min_range_m..=cam.max_range_m).contains(&z)
+        })
+    };
+    let in_corridor = |o: &UnseenTop| {
+        o.x_m[0] < config.analysis.corridor_length_m
+            && o.y_m[0] < config.rover.track_outer_m
+            && o.y_m[1] > -config.rover.track_outer_m
+    };
+    terrain
+        .elements
+        .iter()
+        .filter_map(|e| match *e {
+            Element::Stone {
+                x_m, y_m, radius_m, ..
+            }
+            | Element::Rock {
+                x_m, y_m, radius_m, ..
+            } => Some(UnseenTop {
+                top: Vector3::new(x_m, y_m, terrain.height(x_m, y_m)),
+                x_m: [x_m - radius_m, x_m + radius_m],
+                y_m: [y_m - radius_m, y_m + radius_m],
+            }),
+            Element::Block {
+                x_m,
+                y_m,
+                length_m,
+                width_m,
+                ..
+            } => {
+                // Just inside the near edge, so that the height includes the block.
+                let x = x_m + 1e-3;
+                Some(UnseenTop {
+                    top: Vector3::new(x, y_m, terrain.height(x, y_m)),
+                    x_m: [x_m, x_m + length_m],
+                    y_m: [y_m - width_m / 2.0, y_m + width_m / 2.0],
+                })
+            }
+            _ => None,
+        })
+        .filter(|o| in_corridor(o) && !in_view(o.top))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The top of the first obstacle [`unseen_tops`] finds.
+    fn unseen_top(terrain: &Terrain, config: &Config) -> Option<Vector3<f64>> {
+        unseen_tops(terrain, config).first().map(|o| o.top)
+    }
+
+    fn rock(x_m: f64, y_m: f64, height_m: f64) -> Terrain {
+        Terrain::new(vec![Element::Rock {
+            x_m,
+            y_m,
+            radius_m: 0.15,
+            height_m,
+        }])
+    }
+
+    /// The default camera (0.8 m up, 43° tall, 480 rows) pitched down 45°: its top
+    /// edge looks 45° − 21.5° = 23.5° below the horizon, and the third row from the
+    /// top 45° − atan((0.5 − 2/480) · 2 tan 21.5°) = 23.66°. A 0.25 m rock's apex is
+    /// 0.55 m under the camera, so it is in view nearer than 0.55 m / tan 23.66° =
+    /// 1.255 m, and out of it farther.
+    #[test]
+    fn an_apex_above_the_image_s_top_edge_is_unseen() {
+        let mut c = Config::default();
+        c.mount.pitch_deg = 45.0;
+        let half = 21.5f64.to_radians();
+        let row2 = 45f64.to_radians() - ((0.5 - 2.0 / 480.0) * 2.0 * half.tan()).atan();
+        let edge = 0.55 / row2.tan();
+        assert!((edge - 1.255).abs() < 0.001, "{edge}");
+        assert_eq!(unseen_top(&rock(edge - 0.03, 0.0, 0.25), &c), None);
+        let top = unseen_top(&rock(edge + 0.03, 0.0, 0.25), &c).expect("unseen");
+        assert!((top.z - 0.25).abs() < 1e-9 && (top.x - edge - 0.03).abs() < 1e-9);
+        // At the default 30° pitch the top edge looks 8.5° down: the same rock is
+        // seen out to 0.55 m / tan 8.5° = 3.68 m.
+        let c = Config::default();
+        assert_eq!(unseen_top(&rock(2.5, 0.0, 0.25), &c), None);
+        assert_eq!(unseen_top(&rock(3.6, 0.0, 0.25), &c), None);
+    }
+
+    #[test]
+    fn an_apex_past_the_range_or_outside_the_corridor_is_judged_as_such() {
+        let mut c = Config::default();
+        c.camera.max_range_m = 2.0;
+        // Optical depth of the apex at x = 2.0 m: (2.0, 0.55 below) along a ray 30°
+        // down: 2.0 cos 30° + 0.55 sin 30° = 2.007 m, just past 2.0 m.
+        assert!(unseen_top(&rock(2.0, 0.0, 0.25), &c).is_some());
+        assert_eq!(unseen_top(&rock(1.9, 0.0, 0.25), &c), None);
+        // Beside the corridor (its footprint wholly past the tracks' outer edge):
+        // never counted, however far out of view.
+        let outer = c.rover.track_outer_m;
+        assert_eq!(unseen_top(&rock(2.0, outer + 0.2, 0.25), &c), None);
+        assert!(unseen_top(&rock(2.0, outer + 0.1, 0.25), &c).is_some());
+        assert_eq!(unseen_top(&rock(2.0, -outer - 0.2, 0.25), &c), None);
+        assert!(unseen_top(&rock(2.0, -outer - 0.1, 0.25), &c).is_some());
+        // Behind the camera.
+        assert!(unseen_top(&rock(-0.3, 0.0, 0.25), &c).is_some());
+    }
+
+    #[test]
+    fn a_block_s_top_is_its_near_top_edge() {
+        let mut c = Config::default();
+        c.mount.pitch_deg = 45.0;
+        let block = |x_m: f64| {
+            Terrain::new(vec![Element::Block {
+                x_m,
+                y_m: 0.0,
+                length_m: 0.25,
+                width_m: 0.25,
+                height_m: 0.25,
+            }])
+        };
+        // The near top edge is what must be seen: as the rock's apex above.
+        assert_eq!(unseen_top(&block(1.22), &c), None);
+        let top = unseen_top(&block(1.29), &c).expect("unseen");
+        assert!((top.z - 0.25).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_hazard_is_explained_by_an_unseen_top_on_its_side_and_near_it() {
+        let rover = RoverConfig::default(); // belly |y| < 0.2 m, tracks to 0.7 m
+        let o = UnseenTop {
+            top: Vector3::new(2.0, -0.3, 0.1),
+            x_m: [1.9, 2.1],
+            y_m: [-0.4, -0.2],
+        };
+        let at = |side, distance_m| Hazard {
+            kind: crate::verdict::HazardKind::Unknown,
+            side,
+            distance_m,
+        };
+        assert!(o.explains(&at(Side::Right, 1.75), &rover, 0.2));
+        assert!(o.explains(&at(Side::Right, 2.3), &rover, 0.2));
+        assert!(!o.explains(&at(Side::Right, 1.65), &rover, 0.2));
+        assert!(!o.explains(&at(Side::Right, 2.35), &rover, 0.2));
+        // Its footprint ends on the belly band's edge: not the belly's, nor the left's.
+        assert!(!o.explains(&at(Side::Centre, 2.0), &rover, 0.2));
+        assert!(!o.explains(&at(Side::Left, 2.0), &rover, 0.2));
+        let wider = UnseenTop {
+            y_m: [-0.4, -0.15],
+            ..o
+        };
+        assert!(wider.explains(&at(Side::Centre, 2.0), &rover, 0.2));
+    }
+}
