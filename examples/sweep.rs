@@ -47,7 +47,7 @@
 //! Where a stone, rock or block in the corridor has its top out of view
 //! (`sim::sight::unseen_tops`: outside the image or its top rows, or out of range),
 //! how high it stands is not seen: a verdict not go whose every hazard lies within
-//! `TOP_REACH_M` of such an obstacle along x, on its side, passes (a go is judged as
+//! `sim::sight::TOP_REACH_M` of such an obstacle along x, on its side, passes (a go is judged as
 //! usual, and a go where a stop was due fails); a line before the last counts those
 //! frames, and with `ALL=1` a line `TOP #N ...` names each such obstacle.
 //!
@@ -217,15 +217,8 @@ fn main() {
                 excused.0 += 1;
                 excused.1 += usize::from(v.decision != Decision::Go);
             }
-            // Not go for an obstacle whose top is out of view: every hazard within
-            // TOP_REACH_M of one such, on its side.
-            let top_excused_here = v.decision != Decision::Go
-                && !v.hazards.is_empty()
-                && v.hazards.iter().all(|h| {
-                    unseen_tops
-                        .iter()
-                        .any(|o| o.explains(h, &config.rover, TOP_REACH_M))
-                });
+            let top_excused_here =
+                sim::sight::not_go_for_unseen_tops(&v, &unseen_tops, &config.rover);
             top_excused += usize::from(top_excused_here);
             let fails = if unseen || top_excused_here {
                 Vec::new()
@@ -304,11 +297,6 @@ fn main() {
         );
     }
 }
-
-/// How far along x from an obstacle whose top is out of view a hazard may lie and be
-/// its (`sim::sight::UnseenTop::explains`), metres: the cells before its foot that
-/// its front's first centimetres rise in, and a cell's rounding.
-const TOP_REACH_M: f64 = 0.3;
 
 /// The modes that draw `sim::families`' scenes: as drawn, restyled, with sloping
 /// band sides, with bands wider than the track.

@@ -486,6 +486,11 @@ pub struct FamilyResult {
     pub got: Verdict,
     /// Every way it missed its bar.
     pub failures: Vec<String>,
+    /// Not go for a stone, rock or block whose top the camera cannot see
+    /// ([`crate::sim::sight::not_go_for_unseen_tops`]): how high it stands is not
+    /// seen. Still counted as missed where the bar says go; the report
+    /// says why.
+    pub top_unseen: bool,
 }
 
 /// Draw `per_family` scenes of every family on the default rig and as many on random
@@ -582,6 +587,7 @@ fn sweep_families(
             let config = d.rig.config.clone();
             let mut pipeline = Pipeline::new(config.clone())?;
             let clean = sim::render(&d.terrain, &config);
+            let tops = sim::sight::unseen_tops(&d.terrain, &config);
             for noisy in [false, true] {
                 let mut frame = clean.clone();
                 if noisy {
@@ -598,6 +604,7 @@ fn sweep_families(
                     &d.tolerance.0
                 };
                 let failures = compare(&d.expect, tol, &got);
+                let top_unseen = sim::sight::not_go_for_unseen_tops(&got, &tops, &config.rover);
                 out.push(FamilyResult {
                     family,
                     random_rig,
@@ -605,6 +612,7 @@ fn sweep_families(
                     expect: d.expect.clone(),
                     got,
                     failures,
+                    top_unseen,
                 });
             }
         }
@@ -730,11 +738,16 @@ fn families_table(results: &[FamilyResult], per_family: usize, seed: u64) -> Str
         for r in failed {
             let _ = writeln!(
                 s,
-                "- {}{}{}: {}",
+                "- {}{}{}: {}{}",
                 r.family.name(),
                 if r.random_rig { ", random rig" } else { "" },
                 if r.noisy { ", noisy" } else { "" },
-                r.failures.join("; ")
+                r.failures.join("; "),
+                if r.top_unseen {
+                    " (the obstacle's top is out of the camera's view: how high it stands is not seen)"
+                } else {
+                    ""
+                }
             );
         }
     }

@@ -4193,7 +4193,7 @@ fn a_belly_rock_whose_top_is_seen_gets_its_verdict_and_one_whose_top_is_not_is_n
     // verdict is never go, whatever the rock's height, and names the rock.
     use rand::SeedableRng;
     use rover_terrain::sim::families::{self, Family};
-    use rover_terrain::sim::sight::unseen_tops;
+    use rover_terrain::sim::sight::{not_go_for_unseen_tops, unseen_tops};
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3412);
     let (mut seen, mut unseen, mut fails) = ([0, 0], 0, Vec::new());
     for i in 0..40 {
@@ -4211,11 +4211,7 @@ fn a_belly_rock_whose_top_is_seen_gets_its_verdict_and_one_whose_top_is_not_is_n
                 }
             } else {
                 unseen += 1;
-                let named = v
-                    .hazards
-                    .iter()
-                    .all(|h| tops.iter().any(|o| o.explains(h, &c.rover, 0.3)));
-                if v.decision == Decision::Go || v.hazards.is_empty() || !named {
+                if !not_go_for_unseen_tops(v, &tops, &c.rover) {
                     fails.push(format!(
                         "#{i} unseen {:?} {:?}: {:?} {:?}",
                         d.terrain, c.mount, v.decision, v.hazards
@@ -4226,5 +4222,8 @@ fn a_belly_rock_whose_top_is_seen_gets_its_verdict_and_one_whose_top_is_not_is_n
     }
     assert!(fails.is_empty(), "{fails:#?}");
     // Each kind drawn, so that no part of the test passes empty.
-    assert!(seen[0] >= 4 && seen[1] >= 4 && unseen >= 4, "{seen:?} {unseen}");
+    assert!(
+        seen[0] >= 4 && seen[1] >= 4 && unseen >= 4,
+        "{seen:?} {unseen}"
+    );
 }

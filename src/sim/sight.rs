@@ -9,7 +9,12 @@ use super::terrain::{Element, Terrain};
 use crate::config::{Config, RoverConfig};
 use crate::grid::CUT_ROWS;
 use crate::projection::Projector;
-use crate::verdict::{Hazard, Side};
+use crate::verdict::{Decision, Hazard, Side, Verdict};
+
+/// How far along x from an obstacle whose top is out of view a hazard may lie and be
+/// its ([`not_go_for_unseen_tops`]), metres: the cells before its foot that its
+/// front's first centimetres rise in, and a cell's rounding.
+pub const TOP_REACH_M: f64 = 0.3;
 
 /// A stone, rock or block whose top the camera cannot see ([`unseen_tops`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,6 +103,18 @@ pub fn unseen_tops(terrain: &Terrain, config: &Config) -> Vec<UnseenTop> {
         })
         .filter(|o| in_corridor(o) && !in_view(o.top))
         .collect()
+}
+
+/// Whether `v` is not go for obstacles whose top is out of view: it is not go, has a
+/// hazard, and each of its hazards lies within [`TOP_REACH_M`] of one of `tops` along
+/// x, on its side ([`UnseenTop::explains`]). Any such verdict is right: how high the
+/// obstacle stands is not seen.
+pub fn not_go_for_unseen_tops(v: &Verdict, tops: &[UnseenTop], rover: &RoverConfig) -> bool {
+    v.decision != Decision::Go
+        && !v.hazards.is_empty()
+        && v.hazards
+            .iter()
+            .all(|h| tops.iter().any(|o| o.explains(h, rover, TOP_REACH_M)))
 }
 
 #[cfg(test)]
@@ -204,5 +221,35 @@ mod tests {
             ..o
         };
         assert!(wider.explains(&at(Side::Centre, 2.0), &rover, 0.2));
+    }
+
+    #[test]
+    fn a_verdict_is_not_go_for_unseen_tops_only_when_each_hazard_is_theirs() {
+        let rover = RoverConfig::default();
+        let o = UnseenTop {
+            top: Vector3::new(2.0, 0.0, 0.3),
+            x_m: [1.85, 2.15],
+            y_m: [-0.15, 0.15],
+        };
+        let hazard = |kind, side, distance_m| Hazard {
+            kind,
+            side,
+            distance_m,
+        };
+        let mut v = Verdict::default(); // unknown, no hazard: nothing to explain
+        assert!(!not_go_for_unseen_tops(&v, &[o], &rover));
+        v.add_hazard(hazard(
+            crate::verdict::HazardKind::Unknown,
+            Side::Centre,
+            1.7,
+        ));
+        assert!(not_go_for_unseen_tops(&v, &[o], &rover));
+        assert!(!not_go_for_unseen_tops(&v, &[], &rover));
+        let mut go = v.clone();
+        go.decision = Decision::Go;
+        assert!(!not_go_for_unseen_tops(&go, &[o], &rover));
+        // A second hazard elsewhere (a step in the left track) is not the rock's.
+        v.add_hazard(hazard(crate::verdict::HazardKind::Step, Side::Left, 1.2));
+        assert!(!not_go_for_unseen_tops(&v, &[o], &rover));
     }
 }
