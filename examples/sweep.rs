@@ -218,7 +218,7 @@ fn main() {
                 excused.1 += usize::from(v.decision != Decision::Go);
             }
             let top_excused_here =
-                sim::sight::not_go_for_unseen_tops(&v, &unseen_tops, &config.rover);
+                sim::sight::not_go_for_unseen_tops(v, &unseen_tops, &config.rover);
             top_excused += usize::from(top_excused_here);
             let fails = if unseen || top_excused_here {
                 Vec::new()
