@@ -503,31 +503,36 @@ impl Drive {
             x: -self.back,
             ..sim::Pose::default()
         };
-        let drive =
+        let mut drive =
             sim::drive::render_drive_from(terrain, config, start, &vec![step; n], 1.0, 10.0);
-        let mut pipeline = Pipeline::new(config.clone()).expect("config works");
-        let mut frames = Vec::with_capacity(n + 1);
-        for (k, (mut frame, pose, _)) in drive.into_iter().enumerate() {
-            if let Some(seed) = noise {
+        if let Some(seed) = noise {
+            for (k, (frame, _, _)) in drive.iter_mut().enumerate() {
                 KinectNoise {
                     seed: seed.wrapping_mul(1000).wrapping_add(k as u64),
                     ..Default::default()
                 }
-                .apply(&mut frame, config.camera.hfov_deg);
+                .apply(frame, config.camera.hfov_deg);
             }
-            let v = pipeline.process(&frame).expect("frame fits");
-            let nearest = v
-                .hazards
-                .iter()
-                .copied()
-                .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
-            // Metres from the scene's pose, on the step's grid (no −0.00).
-            let x = (pose.x / self.step).round() * self.step + 0.0;
-            frames.push((
-                x,
-                (v.decision != Decision::Go).then_some((v.decision, nearest)),
-            ));
         }
+        // Each frame's recorded odometry moves the terrain memory, as in service.
+        let verdicts = sim::drive::analyse_drive(&drive, config).expect("frames fit");
+        let frames = drive
+            .iter()
+            .zip(&verdicts)
+            .map(|((_, pose, _), v)| {
+                let nearest = v
+                    .hazards
+                    .iter()
+                    .copied()
+                    .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
+                // Metres from the scene's pose, on the step's grid (no −0.00).
+                let x = (pose.x / self.step).round() * self.step + 0.0;
+                (
+                    x,
+                    (v.decision != Decision::Go).then_some((v.decision, nearest)),
+                )
+            })
+            .collect();
         Approach {
             drive: self,
             frames,
@@ -571,8 +576,18 @@ impl Approach {
                 let hazard = hazard.map_or("no hazard".to_string(), |h| {
                     format!("{:?} {:?} {:.2} m", h.kind, h.side, h.distance_m)
                 });
+                // Each frame's verdict in turn: `.` go, `S` stop, `U` unknown.
+                let frames: String = self
+                    .frames
+                    .iter()
+                    .map(|(_, f)| match f {
+                        None => '.',
+                        Some((Decision::Stop, _)) => 'S',
+                        Some(_) => 'U',
+                    })
+                    .collect();
                 format!(
-                    "first not go at {x:+.2} m from the scene's pose ({decision:?}, {hazard}), {} go frames after it",
+                    "first not go at {x:+.2} m from the scene's pose ({decision:?}, {hazard}), {} go frames after it: {frames}",
                     self.go_again()
                 )
             }

@@ -10,7 +10,8 @@ use rover_terrain_drivers::DepthFrame;
 use rover_terrain_proto::Odometry;
 
 use super::{render_from, Pose, Terrain};
-use crate::{Config, Error};
+use crate::memory::odometry::Tracker;
+use crate::{Config, Error, Pipeline, Verdict};
 
 /// One step of a drive: forward travel along the rover's heading, metres, then a
 /// turn, radians counter-clockwise.
@@ -93,4 +94,66 @@ pub fn write_recording(dir: &Path, drive: &[(DepthFrame, Pose, Odometry)]) -> Re
     }
     let path = dir.join(odometry_file::FILE_NAME);
     std::fs::write(&path, lines).map_err(io(&path))
+}
+
+/// Analyse a drive's frames in turn as `rover-terrain run` replays a recording: each
+/// frame's recorded odometry goes to an odometry tracker, whose motion moves the
+/// terrain memory (with `[memory] enabled`), so the verdicts are the fused ones the
+/// service would give. `drive` as [`render_drive`] makes it.
+pub fn analyse_drive(
+    drive: &[(DepthFrame, Pose, Odometry)],
+    config: &Config,
+) -> Result<Vec<Verdict>, Error> {
+    let mut pipeline = Pipeline::new(config.clone())?;
+    let mut tracker = Tracker::new(&config.memory);
+    drive
+        .iter()
+        .map(|(frame, _, _)| {
+            tracker.on_recorded(frame.odometry, frame.timestamp_s);
+            let motion = tracker.motion(frame.timestamp_s);
+            pipeline.process_moved(frame, motion).cloned()
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::verdict::MemoryState;
+
+    fn small() -> Config {
+        let mut c = Config::default();
+        c.camera.width = 160;
+        c.camera.height = 120;
+        c
+    }
+
+    #[test]
+    fn a_drive_is_analysed_with_its_odometry_moving_the_memory() {
+        let c = small();
+        let steps = vec![
+            Step {
+                forward_m: 0.1,
+                turn_rad: 0.0,
+            };
+            3
+        ];
+        let drive = render_drive(&Terrain::flat(), &c, &steps, 1.0, 10.0);
+        let v = analyse_drive(&drive, &c).unwrap();
+        assert_eq!(v.len(), 4);
+        // The first frame has no motion before it; every later one is fused.
+        assert_eq!(v[0].memory.state, MemoryState::SingleFrame);
+        assert!(v[1..].iter().all(|v| v.memory.state == MemoryState::Fused));
+        assert!(v[2..].iter().all(|v| v.memory.remembered_cells > 0));
+        // Without odometry in the frames, nothing is fused.
+        let bare: Vec<_> = drive
+            .into_iter()
+            .map(|(mut f, p, o)| {
+                f.odometry = None;
+                (f, p, o)
+            })
+            .collect();
+        let v = analyse_drive(&bare, &c).unwrap();
+        assert!(v.iter().all(|v| v.memory.state == MemoryState::SingleFrame));
+    }
 }
