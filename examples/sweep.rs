@@ -59,12 +59,14 @@
 //! `APPROACH=BACK_M,STEP_M,AHEAD_M` (default `1,0.1,1` when set to `1`) drives the
 //! rover of each go where a stop was due straight up to and past the scene's pose:
 //! from `BACK_M` behind it to `AHEAD_M` past it, `STEP_M` a frame with odometry (the
-//! terrain memory fusing, as in service), its frames noisy where the go was (each
+//! terrain memory fusing, as in service: `sim::drive::analyse_drive`), its frames
+//! noisy where the go was (each
 //! frame its own noise seed, so the drive's frame at the pose is not the sweep's
 //! noisy frame, and may differ from it). A line `APPROACH #N noisy=...` says where
 //! along that drive the verdict is first not go (metres from the scene's pose,
-//! negative before it), with which hazard, and how many frames after it go again, or
-//! that every frame goes; the last line sums them up. A rover driving so stops at the
+//! negative before it), with which hazard, and how many frames after it go again, then
+//! every frame's verdict in turn (`.` go, `S` stop, `U` unknown), or that every frame
+//! goes; the last line sums them up. A rover driving so stops at the
 //! first. An obstacle the scene's frame does not see whole (the view ends on it, or
 //! on its side) should be found a frame or two nearer, or was found farther back; one
 //! that goes all the way is the false go to fix first.
