@@ -69,7 +69,11 @@
 //! goes; the last line sums them up. A rover driving so stops at the
 //! first. An obstacle the scene's frame does not see whole (the view ends on it, or
 //! on its side) should be found a frame or two nearer, or was found farther back; one
-//! that goes all the way is the false go to fix first.
+//! that goes all the way is the false go to fix first. With `HOLD=N` as well, the
+//! rover stops at once where the drive is first not go and holds that pose for `N`
+//! frames (noisy ones each with its own noise), the memory fusing them, as a stopped
+//! rover's camera goes on: a line `HOLD #N ...` says how many of those go (a go there
+//! would set the rover moving again).
 
 #[path = "../tests/common/second_renderer.rs"]
 mod second;
@@ -111,6 +115,9 @@ struct Options {
     /// APPROACH=BACK_M,STEP_M,AHEAD_M (or anything else for 1,0.1,1): drive up to
     /// each false go.
     approach: Option<Drive>,
+    /// HOLD=N, with APPROACH: the rover stops where the drive is first not go and
+    /// holds there N frames.
+    hold: Option<usize>,
     /// MAX_RANGE=M: every rig's camera sees to M metres.
     max_range: Option<f64>,
 }
@@ -144,6 +151,7 @@ impl Options {
                     },
                 }
             }),
+            hold: env("HOLD").map(|v| v.parse().expect("HOLD is a count of frames")),
             max_range: env("MAX_RANGE").map(|v| {
                 v.parse()
                     .ok()
@@ -167,6 +175,7 @@ fn main() {
         all,
         want_too,
         approach,
+        hold,
         max_range,
     } = Options::parse();
     let mode = mode.as_str();
@@ -262,6 +271,15 @@ fn main() {
                     let a = drive.run(&terrain, &config, noise);
                     println!("APPROACH #{i} noisy={noisy} {}", a.describe());
                     approaches.add(&a);
+                    if let (Some(first), Some(n)) = (a.first_not_go(), hold) {
+                        let gos = drive.hold(&terrain, &config, noise, (first, n));
+                        println!(
+                            "HOLD #{i} noisy={noisy} stopped at {:+.2} m: {gos} of {n} frames held there go",
+                            a.frames[first].0
+                        );
+                        approaches.held += 1;
+                        approaches.held_go += usize::from(gos > 0);
+                    }
                 }
             }
             if let (Ok(dir), true) = (std::env::var("DUMP"), all || !fails.is_empty()) {
@@ -501,12 +519,54 @@ impl Drive {
             forward_m: self.step,
             turn_rad: 0.0,
         };
+        Approach {
+            drive: self,
+            frames: self.frames(terrain, config, noise, &vec![step; n]),
+        }
+    }
+
+    /// A rover that stops where the drive is first not go (frame `first`), at once:
+    /// it holds that pose for `hold` frames (each with its own noise, when noisy),
+    /// the memory fusing them. Returns how many of those go.
+    fn hold(
+        self,
+        terrain: &Terrain,
+        config: &Config,
+        noise: Option<u64>,
+        (first, hold): (usize, usize),
+    ) -> usize {
+        let moving = sim::drive::Step {
+            forward_m: self.step,
+            turn_rad: 0.0,
+        };
+        let still = sim::drive::Step {
+            forward_m: 0.0,
+            turn_rad: 0.0,
+        };
+        let mut steps = vec![moving; first];
+        steps.extend(std::iter::repeat_n(still, hold));
+        let frames = self.frames(terrain, config, noise, &steps);
+        frames[first + 1..]
+            .iter()
+            .filter(|(_, f)| f.is_none())
+            .count()
+    }
+
+    /// Each frame of a drive of `steps` from `back` behind the scene's pose: its x
+    /// (metres from the scene's pose) and `None` for a go, else its decision and
+    /// nearest hazard.
+    fn frames(
+        self,
+        terrain: &Terrain,
+        config: &Config,
+        noise: Option<u64>,
+        steps: &[sim::drive::Step],
+    ) -> Vec<(f64, Option<NotGo>)> {
         let start = sim::Pose {
             x: -self.back,
             ..sim::Pose::default()
         };
-        let mut drive =
-            sim::drive::render_drive_from(terrain, config, start, &vec![step; n], 1.0, 10.0);
+        let mut drive = sim::drive::render_drive_from(terrain, config, start, steps, 1.0, 10.0);
         if let Some(seed) = noise {
             for (k, (frame, _, _)) in drive.iter_mut().enumerate() {
                 KinectNoise {
@@ -518,7 +578,7 @@ impl Drive {
         }
         // Each frame's recorded odometry moves the terrain memory, as in service.
         let verdicts = sim::drive::analyse_drive(&drive, config).expect("frames fit");
-        let frames = drive
+        drive
             .iter()
             .zip(&verdicts)
             .map(|((_, pose, _), v)| {
@@ -534,11 +594,7 @@ impl Drive {
                     (v.decision != Decision::Go).then_some((v.decision, nearest)),
                 )
             })
-            .collect();
-        Approach {
-            drive: self,
-            frames,
-        }
+            .collect()
     }
 }
 
@@ -605,6 +661,9 @@ struct Approaches {
     latest_m: Option<f64>,
     never: usize,
     flickers: usize,
+    /// Drives held at their first stop (`HOLD`), and how many of them went again.
+    held: usize,
+    held_go: usize,
 }
 
 impl Approaches {
@@ -634,5 +693,11 @@ impl Approaches {
             self.never,
             self.flickers
         );
+        if self.held > 0 {
+            println!(
+                "{} drives held at their first stop: {} of them go again there",
+                self.held, self.held_go
+            );
+        }
     }
 }
