@@ -94,6 +94,12 @@ pub struct MemoryConfig {
     pub max_speed_mps: f64,
     /// Odometry that implies more than this turn rate is a jump: fall back, °/s.
     pub max_turn_dps: f64,
+    /// A rover that has not moved (under 1 cm) since a verdict last reported a hazard
+    /// holds that hazard for this long after it, seconds, however few verdicts
+    /// reported it: another frame from the same place only rolls the sensor's noise
+    /// again, and cannot clear what it found. 0: off (a hazard one verdict reported
+    /// is gone at the next that misses it, standing or not).
+    pub standing_hold_s: f64,
 }
 
 impl Default for MemoryConfig {
@@ -107,6 +113,7 @@ impl Default for MemoryConfig {
             odometry_timeout_s: 0.5,
             max_speed_mps: 2.0,
             max_turn_dps: 90.0,
+            standing_hold_s: 1.0,
         }
     }
 }
@@ -121,6 +128,8 @@ impl MemoryConfig {
         positive_below("memory.odometry_timeout_s", self.odometry_timeout_s, 30.0)?;
         positive_below("memory.max_speed_mps", self.max_speed_mps, 50.0)?;
         positive_below("memory.max_turn_dps", self.max_turn_dps, 3600.0)?;
+        finite("memory.standing_hold_s", self.standing_hold_s)?;
+        within("memory.standing_hold_s", self.standing_hold_s, 0.0, 30.0)?;
         Ok(())
     }
 }
@@ -898,6 +907,24 @@ max_speed_mps = -1
 max_turn_dps = inf
 ",
                 "memory.max_turn_dps",
+            ),
+            (
+                "[memory]
+standing_hold_s = -0.5
+",
+                "memory.standing_hold_s",
+            ),
+            (
+                "[memory]
+standing_hold_s = nan
+",
+                "memory.standing_hold_s",
+            ),
+            (
+                "[memory]
+standing_hold_s = 31
+",
+                "memory.standing_hold_s",
             ),
             (
                 "[ros]

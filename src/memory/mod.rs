@@ -164,7 +164,9 @@ const CARRY_FRAMES: u16 = 4;
 const MISSED_MAX_FRAMES: u16 = 30;
 
 /// A carried hazard is held in view, reported or not, while the rover has moved less
-/// than this since a verdict last reported it (and for under [`STILL_HOLD_S`]),
+/// than this since a verdict last reported it (and for under `[memory]
+/// standing_hold_s`, 1 s by default: as long as a parked rover's view takes to clear a
+/// hazard many verdicts reported, [`MISSED_MAX_FRAMES`] at 30 frames a second),
 /// metres: a rover standing, or all but. A view from the same place is no better than
 /// the one that found it; another frame of it rolls the sensor's noise again, and
 /// cannot clear it. A rover moving on (2 cm a frame is 0.4 m/s at 20 frames a second)
@@ -174,13 +176,6 @@ const MISSED_MAX_FRAMES: u16 = 30;
 /// cm of a 0.56 m belly block's face, `sweep -- hazards 100 3304 random` #32, noisy)
 /// otherwise went again in 7 of 10 frames held there, each a go that sets it moving.
 const STILL_M: f32 = 0.01;
-
-/// How long a rover that has not moved ([`STILL_M`]) holds a hazard a verdict
-/// reported, without a verdict reporting it again, seconds: as long as a parked
-/// rover's view takes to clear a hazard many verdicts reported
-/// ([`MISSED_MAX_FRAMES`] at 30 frames a second). A hazard one noisy frame reported
-/// stops a standing rover that long.
-const STILL_HOLD_S: f32 = 1.0;
 
 /// Heights of one cell in two frames within this of each other count as the same
 /// ground, metres: a frame that disagrees starts the cell's count again.
@@ -218,6 +213,8 @@ pub struct TerrainMemory {
     min_frames: u16,
     max_travel_m: f32,
     max_age_s: f32,
+    /// `[memory] standing_hold_s`, seconds ([`STILL_M`]).
+    standing_hold_s: f32,
     /// Map cells per metre (the voxel size's inverse, worked out once).
     per_voxel: f32,
     remembered: u32,
@@ -271,6 +268,7 @@ impl TerrainMemory {
             min_frames: m.min_frames.min(u32::from(u16::MAX)) as u16,
             max_travel_m: m.max_travel_m as f32,
             max_age_s: m.max_age_s as f32,
+            standing_hold_s: m.standing_hold_s as f32,
             per_voxel: 1.0 / spec.voxel_m,
             remembered: 0,
             confidence_sum: 0.0,
@@ -522,12 +520,13 @@ impl TerrainMemory {
     /// index) while in view, kept and reported where the motion carried them when
     /// `min_frames` verdicts in a row reported them and fewer in a row (up to
     /// [`MISSED_MAX_FRAMES`]) have missed them since, or when the rover has not moved
-    /// since one last reported them ([`STILL_M`], [`STILL_HOLD_S`]). Returns how many.
+    /// since one last reported them ([`STILL_M`], `[memory] standing_hold_s`). Returns
+    /// how many.
     fn keep_missed(&mut self, old: &[CarriedHazard], found: u32, verdict: &mut Verdict) -> u32 {
         let mut kept = 0u32;
         for (i, p) in old.iter().enumerate() {
             let missed = p.missed.saturating_add(1);
-            let still = p.travel_m < STILL_M && p.age_s < STILL_HOLD_S;
+            let still = p.travel_m < STILL_M && p.age_s < self.standing_hold_s;
             let dropped = p.frames < self.min_frames || missed >= p.frames.min(MISSED_MAX_FRAMES);
             if found & (1 << i) != 0 || self.out_of_view(p.at[0], p.side) || (dropped && !still) {
                 continue;
@@ -1305,21 +1304,29 @@ mod tests {
         // never two in a row: a rover standing where it stopped stops in every frame,
         // at 30 frames a second. (Moving, one verdict's hazard is gone at the next
         // miss: `a_hazard_in_view_is_dropped_only_once_as_many_frames_miss_it_as_found_it`.)
-        let mut m = viewing_from_0_6_m();
         let standing = Motion {
             dt_s: 1.0 / 30.0,
             ..Motion::default()
         };
-        let decisions: Vec<Decision> = (0..30)
-            .map(|k| {
-                m.advance(&standing);
-                let seen = (k % 3 == 0).then_some(1.5);
-                carried(&mut m, HazardKind::Unknown, seen).0.decision
-            })
-            .collect();
-        assert!(
-            decisions.iter().all(|&d| d != Decision::Go),
-            "{decisions:?}"
+        let decisions = |hold_s: f32| {
+            let mut m = viewing_from_0_6_m();
+            m.standing_hold_s = hold_s;
+            (0..30)
+                .map(|k| {
+                    m.advance(&standing);
+                    let seen = (k % 3 == 0).then_some(1.5);
+                    carried(&mut m, HazardKind::Unknown, seen).0.decision
+                })
+                .collect::<Vec<Decision>>()
+        };
+        let held = decisions(1.0);
+        assert!(held.iter().all(|&d| d != Decision::Go), "{held:?}");
+        // `[memory] standing_hold_s = 0`: off, every frame that misses it goes.
+        let off = decisions(0.0);
+        assert_eq!(
+            off.iter().filter(|&&d| d == Decision::Go).count(),
+            20,
+            "{off:?}"
         );
     }
 
