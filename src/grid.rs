@@ -524,17 +524,25 @@ fn depths_in_range(pixels: &[u16], min_mm: u16, max_mm: u16, far_mm: u16) -> (u3
 }
 
 /// Mark the columns of a row whose depth lies in `[min_mm, max_mm]` as having had
-/// their topmost such depth (`col_seen`); returns how many were not marked before.
-/// Most frames mark every column in their first rows in range; then the caller skips
-/// it.
-fn see_columns(col_seen: &mut [bool], pixels: &[u16], min_mm: u16, max_mm: u16) -> usize {
+/// their topmost such depth (`col_seen`), and take those not marked before off
+/// `left`, the columns whose topmost depth in range is still to come. Most frames
+/// mark every column in their first rows in range; then it returns at once.
+fn see_columns(
+    col_seen: &mut [bool],
+    pixels: &[u16],
+    (min_mm, max_mm): (u16, u16),
+    left: &mut usize,
+) {
+    if *left == 0 {
+        return;
+    }
     let mut newly = 0;
     for (seen, &d) in col_seen.iter_mut().zip(pixels) {
         let now = !*seen && d >= min_mm && d <= max_mm;
         newly += usize::from(now);
         *seen |= now;
     }
-    newly
+    *left -= newly;
 }
 
 /// The branch-free half of binning one row: every pixel's voxel index (`u32::MAX`
@@ -652,27 +660,24 @@ impl ViewCut {
         self.touched.clear();
     }
 
-    /// Mark the cells one indexed row's points cut: every point's when the row is one
-    /// of the top [`CUT_ROWS`] (`top`); otherwise those within [`RANGE_CUT_MM`] of the
-    /// far range limit, and a column's topmost point in range within
+    /// Mark the cells one indexed row's points (`idx`, `pixels`) cut: every point's
+    /// when the row is one of the top [`CUT_ROWS`] (`top`); otherwise those within
+    /// [`RANGE_CUT_MM`] of the far range limit, and a column's topmost point in range
+    /// (`col_seen`: the columns that had one in a row above) within
     /// [`TOPMOST_CUT_MM`] of it (a surface met at a grazing angle leaves the band
-    /// between two rows); past them the surface leaves the sensor's range. Marks the
-    /// columns whose topmost point in range this row holds in `rb.col_seen` and
-    /// returns how many there were. `nz` is the grid's column height in voxels.
+    /// between two rows); past them the surface leaves the sensor's range. `nz` is the
+    /// grid's column height in voxels.
     fn mark_row(
         &mut self,
-        rb: &mut RowBuffers,
+        (idx, col_seen): (&[u32], &[bool]),
         pixels: &[u16],
         limits: CutLimits,
         top: bool,
         nz: usize,
-    ) -> usize {
-        let mut newly_seen = 0;
-        for ((&i, &d), seen) in rb.idx.iter().zip(pixels).zip(rb.col_seen.iter_mut()) {
+    ) {
+        for ((&i, &d), &seen) in idx.iter().zip(pixels).zip(col_seen) {
             let in_range = d >= limits.min_mm && d <= limits.max_mm;
-            let topmost = in_range && !*seen;
-            *seen |= topmost;
-            newly_seen += usize::from(topmost);
+            let topmost = in_range && !seen;
             let by_range =
                 in_range && (d >= limits.range_mm || (topmost && d >= limits.topmost_mm));
             if i == u32::MAX || !(top || by_range) {
@@ -686,7 +691,6 @@ impl ViewCut {
             }
             self.by_range[c] |= by_range;
         }
-        newly_seen
     }
 }
 
@@ -843,6 +847,7 @@ impl VoxelGrid {
             range_mm: max_mm.saturating_sub(RANGE_CUT_MM),
             topmost_mm: max_mm.saturating_sub(TOPMOST_CUT_MM),
         };
+        let range = (min_mm, max_mm);
         self.row.col_seen.fill(false);
         // Image columns whose topmost depth in range is still to come.
         let mut columns_left = width;
@@ -863,8 +868,8 @@ impl VoxelGrid {
                 || (forward > 0.0 && t[0] + f32::from(nearest_mm) * 0.001 * forward >= nx + 1.0)
             {
                 stats.points_in += valid;
-                if valid > 0 && columns_left > 0 {
-                    columns_left -= see_columns(&mut self.row.col_seen, pixels, min_mm, max_mm);
+                if valid > 0 {
+                    see_columns(&mut self.row.col_seen, pixels, range, &mut columns_left);
                 }
                 continue;
             }
@@ -885,23 +890,19 @@ impl VoxelGrid {
             stats.points_in += valid;
             if in_grid == 0 {
                 // Nothing to bin (a row looking past the corridor): nor to filter.
-                if columns_left > 0 {
-                    columns_left -= see_columns(&mut rb.col_seen, pixels, min_mm, max_mm);
-                }
+                see_columns(&mut rb.col_seen, pixels, range, &mut columns_left);
                 continue;
             }
             if mixed.is_on() {
                 stats.points_mixed += drop_mixed(mixed, jump, (depth, width), v, rb);
             }
             if v < CUT_ROWS || near_limit > 0 {
-                columns_left -= self
-                    .view_cut
-                    .mark_row(rb, pixels, limits, v < CUT_ROWS, s.nz);
-            } else if columns_left > 0 {
-                // No point near the range limit: the columns in range here have their
-                // topmost point behind them.
-                columns_left -= see_columns(&mut rb.col_seen, pixels, min_mm, max_mm);
+                let seen = (rb.idx.as_slice(), rb.col_seen.as_slice());
+                self.view_cut
+                    .mark_row(seen, pixels, limits, v < CUT_ROWS, s.nz);
             }
+            // The columns in range here have their topmost point behind them from now.
+            see_columns(&mut rb.col_seen, pixels, range, &mut columns_left);
             stats.points_binned += merge_row(&self.row, &mut self.acc);
         }
         stats
