@@ -86,7 +86,7 @@ use rover_terrain::sim::{
 };
 use rover_terrain::validate::{compare, CLEAN, NOISY};
 use rover_terrain::verdict::Hazard;
-use rover_terrain::{Config, Decision, Pipeline};
+use rover_terrain::{Config, Decision, Pipeline, Verdict};
 
 /// What a sweep run draws and reports: its arguments and environment (see the module
 /// doc).
@@ -233,16 +233,8 @@ fn main() {
             top_excused += usize::from(top_excused_here);
             let fails = if unseen || top_excused_here {
                 Vec::new()
-            } else if mode == "edges" {
-                // Stop or unknown: a ditch whose floor lies in its own shadow is unknown
-                // ground (how deep it is, is not seen); only a go fails.
-                if v.decision == Decision::Go {
-                    vec![format!("go where {:?} was due", want.verdict)]
-                } else {
-                    Vec::new()
-                }
             } else {
-                compare(&want, if noisy { &tol.1 } else { &tol.0 }, v)
+                judge(mode, &want, if noisy { &tol.1 } else { &tol.0 }, v)
             };
             if all {
                 println!(
@@ -253,33 +245,25 @@ fn main() {
             if want_too {
                 println!("want #{i} noisy={noisy} {want:?}");
             }
-            for o in unseen_tops.iter().filter(|_| all) {
-                println!(
-                    "TOP #{i} noisy={noisy} {:?}: a top at ({:.2}, {:.2}, {:.3}) m out of view{}",
-                    v.decision,
-                    o.top.x,
-                    o.top.y,
-                    o.top.z,
-                    if top_excused_here { ", excused" } else { "" }
-                );
+            if all {
+                for o in &unseen_tops {
+                    println!(
+                        "TOP #{i} noisy={noisy} {:?}: a top at ({:.2}, {:.2}, {:.3}) m out of view{}",
+                        v.decision,
+                        o.top.x,
+                        o.top.y,
+                        o.top.z,
+                        if top_excused_here { ", excused" } else { "" }
+                    );
+                }
             }
             total += 1;
             if v.decision == Decision::Go && want.verdict != Decision::Go {
                 false_go += 1;
                 if let Some(drive) = approach {
                     let noise = noisy.then_some(seed * 1000 + i as u64);
-                    let a = drive.run(&terrain, &config, noise);
-                    println!("APPROACH #{i} noisy={noisy} {}", a.describe());
-                    approaches.add(&a);
-                    if let (Some(first), Some(n)) = (a.first_not_go(), hold) {
-                        let gos = drive.hold(&terrain, &config, noise, (first, n));
-                        println!(
-                            "HOLD #{i} noisy={noisy} stopped at {:+.2} m: {gos} of {n} frames held there go",
-                            a.frames[first].0
-                        );
-                        approaches.held += 1;
-                        approaches.held_go += usize::from(gos > 0);
-                    }
+                    let label = format!("#{i} noisy={noisy}");
+                    approaches.drive_up(drive, hold, (&terrain, &config, noise), &label);
                 }
             }
             if let (Ok(dir), true) = (std::env::var("DUMP"), all || !fails.is_empty()) {
@@ -315,6 +299,19 @@ fn main() {
             "{} frames met a surface under {GRAZING_DEG}° (any verdict passes), {} of them not go",
             excused.0, excused.1
         );
+    }
+}
+
+/// How verdict `v` of a frame of `mode` misses `want` within `tol`: in `edges`, stop
+/// or unknown both pass (a ditch whose floor lies in its own shadow is unknown ground:
+/// how deep it is, is not seen), and only a go fails.
+fn judge(mode: &str, want: &Expectation, tol: &Tolerance, v: &Verdict) -> Vec<String> {
+    if mode != "edges" {
+        compare(want, tol, v)
+    } else if v.decision == Decision::Go {
+        vec![format!("go where {:?} was due", want.verdict)]
+    } else {
+        Vec::new()
     }
 }
 
@@ -667,6 +664,30 @@ struct Approaches {
 }
 
 impl Approaches {
+    /// Drive up to a go where a stop was due (`terrain` on `config`'s rig, noisy with
+    /// `noise`'s seed), print its `APPROACH` line and, with `hold` frames, its `HOLD`
+    /// line (each after `label`), and count it.
+    fn drive_up(
+        &mut self,
+        drive: Drive,
+        hold: Option<usize>,
+        (terrain, config, noise): (&Terrain, &Config, Option<u64>),
+        label: &str,
+    ) {
+        let a = drive.run(terrain, config, noise);
+        println!("APPROACH {label} {}", a.describe());
+        self.add(&a);
+        if let (Some(first), Some(n)) = (a.first_not_go(), hold) {
+            let gos = drive.hold(terrain, config, noise, (first, n));
+            println!(
+                "HOLD {label} stopped at {:+.2} m: {gos} of {n} frames held there go",
+                a.frames[first].0
+            );
+            self.held += 1;
+            self.held_go += usize::from(gos > 0);
+        }
+    }
+
     fn add(&mut self, a: &Approach) {
         self.driven += 1;
         match a.first_not_go().map(|k| a.frames[k].0) {
