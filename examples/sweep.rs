@@ -29,9 +29,12 @@
 //! just those scenes of the sweep. The last line counts the failures and, of them,
 //! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain
 //! (`N.json`, for `cells`) and configuration (`N.toml`, for `cells`' `CONFIG` and
-//! `rover-terrain inspect --config`) there; with `ALL=1`, every scene's. `FLYING=FRACTION` also mixes that fraction
+//! `rover-terrain inspect --config`) there; with `ALL=1`, every scene's.
+//! `NOISE=SCALE[,DROPOUT]` scales the noisy frames' depth σ (`KinectNoise`'s, 1 by
+//! default) and sets the fraction of their pixels lost (1 % by default), as a camera
+//! noisier than a Kinect v1 gives. `FLYING=FRACTION` also mixes that fraction
 //! of the noisy frames' depth-edge pixels (`sim::FlyingPixels`, as time-of-flight
-//! cameras give). `EXACT=1` draws each frame with the second renderer of
+//! cameras give). Both apply to the `APPROACH` drives' frames too. `EXACT=1` draws each frame with the second renderer of
 //! `tests/common/second_renderer.rs` (its own rays, exact planes and faces) instead of
 //! `sim::render`; scenes it cannot draw (rough ground, stones, rocks on anything but
 //! flat ground) are skipped, and the last line counts them. `ALL=1` also prints every
@@ -104,8 +107,8 @@ struct Options {
     family: Option<usize>,
     /// ONLY=i,j,...: render just those scenes (the draws before them still happen).
     only: Option<Vec<usize>>,
-    /// FLYING=FRACTION: mix that fraction of the noisy frames' edge pixels too.
-    flying: Option<f64>,
+    /// The noisy frames' noise: `NOISE=SCALE[,DROPOUT]` and `FLYING=FRACTION`.
+    noise: Noise,
     /// EXACT=1: render with the second renderer.
     exact: bool,
     /// ALL=1: print every frame's verdict, passed or not.
@@ -134,7 +137,7 @@ impl Options {
             random_rig: args.get(4).map(String::as_str) == Some("random"),
             family: args.get(5).and_then(|s| s.parse::<usize>().ok()),
             only: env("ONLY").map(|v| v.split(',').filter_map(|s| s.parse().ok()).collect()),
-            flying: env("FLYING").and_then(|v| v.parse().ok()),
+            noise: Noise::parse(env("NOISE"), env("FLYING")),
             exact: on("EXACT"),
             all: on("ALL"),
             want_too: on("WANT"),
@@ -162,6 +165,70 @@ impl Options {
     }
 }
 
+/// The noise of a sweep's noisy frames (and its drives' frames): Kinect v1 noise,
+/// its depth σ scaled and its dropout set by `NOISE=SCALE[,DROPOUT]` (default 1 and
+/// `KinectNoise`'s 1 %), then, with `FLYING=FRACTION`, that fraction of the depth-edge
+/// pixels mixed.
+#[derive(Debug, Clone, Copy)]
+struct Noise {
+    /// Factor on `KinectNoise`'s σ per squared metre of depth.
+    sigma_scale: f64,
+    /// Fraction of pixels lost, 0..1.
+    dropout: f64,
+    /// Fraction of depth-edge pixels mixed (`sim::FlyingPixels`), if any.
+    flying: Option<f64>,
+}
+
+impl Noise {
+    /// From `NOISE` and `FLYING`'s values; a malformed one stops the sweep.
+    fn parse(noise: Option<String>, flying: Option<String>) -> Self {
+        let kinect = KinectNoise::default();
+        let (sigma_scale, dropout) = match noise {
+            None => (1.0, kinect.dropout),
+            Some(v) => {
+                let p: Vec<f64> = v
+                    .split(',')
+                    .map(|s| s.parse().expect("NOISE is SCALE[,DROPOUT], numbers"))
+                    .collect();
+                match p[..] {
+                    [scale] => (scale, kinect.dropout),
+                    [scale, dropout] => (scale, dropout),
+                    _ => panic!("NOISE is SCALE[,DROPOUT]"),
+                }
+            }
+        };
+        assert!(
+            sigma_scale >= 0.0 && (0.0..1.0).contains(&dropout),
+            "NOISE: SCALE at least 0, DROPOUT 0..1"
+        );
+        Noise {
+            sigma_scale,
+            dropout,
+            flying: flying.map(|v| v.parse().expect("FLYING is a fraction")),
+        }
+    }
+
+    /// Apply it to `frame`, from `config`'s camera, with `seed`.
+    fn apply(&self, seed: u64, frame: &mut rover_terrain_drivers::DepthFrame, config: &Config) {
+        let kinect = KinectNoise::default();
+        KinectNoise {
+            seed,
+            sigma_per_m2: kinect.sigma_per_m2 * self.sigma_scale,
+            dropout: self.dropout,
+            ..kinect
+        }
+        .apply(frame, config.camera.hfov_deg);
+        if let Some(fraction) = self.flying {
+            sim::FlyingPixels {
+                seed,
+                fraction,
+                ..Default::default()
+            }
+            .apply(frame);
+        }
+    }
+}
+
 fn main() {
     let Options {
         mode,
@@ -170,7 +237,7 @@ fn main() {
         random_rig,
         family,
         only,
-        flying,
+        noise,
         exact,
         all,
         want_too,
@@ -209,19 +276,7 @@ fn main() {
         for noisy in [false, true] {
             let mut f = frame.clone();
             if noisy {
-                KinectNoise {
-                    seed: seed * 1000 + i as u64,
-                    ..Default::default()
-                }
-                .apply(&mut f, config.camera.hfov_deg);
-                if let Some(fraction) = flying {
-                    sim::FlyingPixels {
-                        seed: seed * 1000 + i as u64,
-                        fraction,
-                        ..Default::default()
-                    }
-                    .apply(&mut f);
-                }
+                noise.apply(seed * 1000 + i as u64, &mut f, &config);
             }
             let v = pipeline.process(&f).expect("frame fits");
             if unseen {
@@ -261,7 +316,7 @@ fn main() {
             if v.decision == Decision::Go && want.verdict != Decision::Go {
                 false_go += 1;
                 if let Some(drive) = approach {
-                    let noise = noisy.then_some(seed * 1000 + i as u64);
+                    let noise = noisy.then_some((noise, seed * 1000 + i as u64));
                     let label = format!("#{i} noisy={noisy}");
                     approaches.drive_up(drive, hold, (&terrain, &config, noise), &label);
                 }
@@ -510,7 +565,7 @@ impl Drive {
     /// Drive it in `terrain` on `config`'s rig, each frame rendered with odometry
     /// and, with `noise`'s seed, Kinect noise (seeded per frame), through one
     /// pipeline (its terrain memory fusing them).
-    fn run(self, terrain: &Terrain, config: &Config, noise: Option<u64>) -> Approach {
+    fn run(self, terrain: &Terrain, config: &Config, noise: Option<(Noise, u64)>) -> Approach {
         let n = ((self.back + self.ahead) / self.step).round() as usize;
         let step = sim::drive::Step {
             forward_m: self.step,
@@ -529,7 +584,7 @@ impl Drive {
         self,
         terrain: &Terrain,
         config: &Config,
-        noise: Option<u64>,
+        noise: Option<(Noise, u64)>,
         (first, hold): (usize, usize),
     ) -> usize {
         let moving = sim::drive::Step {
@@ -556,7 +611,7 @@ impl Drive {
         self,
         terrain: &Terrain,
         config: &Config,
-        noise: Option<u64>,
+        noise: Option<(Noise, u64)>,
         steps: &[sim::drive::Step],
     ) -> Vec<(f64, Option<NotGo>)> {
         let start = sim::Pose {
@@ -564,13 +619,13 @@ impl Drive {
             ..sim::Pose::default()
         };
         let mut drive = sim::drive::render_drive_from(terrain, config, start, steps, 1.0, 10.0);
-        if let Some(seed) = noise {
+        if let Some((noise, seed)) = noise {
             for (k, (frame, _, _)) in drive.iter_mut().enumerate() {
-                KinectNoise {
-                    seed: seed.wrapping_mul(1000).wrapping_add(k as u64),
-                    ..Default::default()
-                }
-                .apply(frame, config.camera.hfov_deg);
+                noise.apply(
+                    seed.wrapping_mul(1000).wrapping_add(k as u64),
+                    frame,
+                    config,
+                );
             }
         }
         // Each frame's recorded odometry moves the terrain memory, as in service.
@@ -671,7 +726,7 @@ impl Approaches {
         &mut self,
         drive: Drive,
         hold: Option<usize>,
-        (terrain, config, noise): (&Terrain, &Config, Option<u64>),
+        (terrain, config, noise): (&Terrain, &Config, Option<(Noise, u64)>),
         label: &str,
     ) {
         let a = drive.run(terrain, config, noise);
