@@ -16,6 +16,7 @@ fn frames() -> Vec<(&'static str, rover_terrain_drivers::DepthFrame)> {
         alpha_deg: -26.0,
         extent: Extent::Left,
         cap_m: None,
+        round_m: None,
     }]);
     let mut noisy = sim::render(&ramp, &config);
     KinectNoise::default().apply(&mut noisy, config.camera.hfov_deg);

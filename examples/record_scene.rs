@@ -16,6 +16,7 @@ fn main() {
         alpha_deg: a,
         extent: e,
         cap_m: None,
+        round_m: None,
     };
     let scenes = [
         Terrain::flat(),

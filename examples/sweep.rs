@@ -12,7 +12,8 @@
 //! ramp's side face fading over 2-15 cm), or `-- widened [N] [SEED]
 //! [default|random] [FAMILY-INDEX]` for them with each band under one side wider
 //! than the track (`families::widened`: its inner edge 0-15 cm into the belly band),
-//! or
+//! or `-- rounded [N] [SEED] [default|random] [FAMILY-INDEX]` for them with every
+//! ramp's toe rounded (`families::rounded`: over 5-40 cm across the toe line), or
 //! `-- hazards N SEED random` for the go/stop edges on random rigs, each edge where
 //! the rig sees the tracks, or `-- edges N SEED` for impassable edges that sweep
 //! does not draw (a step down under one side, a descent steeper than the limit, a
@@ -22,7 +23,7 @@
 //! runs at 20-60° to the axle, on random rigs, judged go or not, except where the
 //! camera meets the surface in the tracks at under `GRAZING_DEG` (a descent as steep
 //! as the line of sight to it is not seen there): any verdict passes, and the last
-//! lines count those frames; `families`, `natural`, `bevelled` and `widened` excuse a scene due
+//! lines count those frames; `families`, `natural`, `bevelled`, `widened` and `rounded` excuse a scene due
 //! go in the same way, its incidence taken on its planes alone (no rough ground, no
 //! stones, each band's sides drawn vertical).
 //! `ONLY=3,7` checks
@@ -371,8 +372,8 @@ fn judge(mode: &str, want: &Expectation, tol: &Tolerance, v: &Verdict) -> Vec<St
 }
 
 /// The modes that draw `sim::families`' scenes: as drawn, restyled, with sloping
-/// band sides, with bands wider than the track.
-const FAMILY_MODES: [&str; 4] = ["families", "natural", "bevelled", "widened"];
+/// band sides, with bands wider than the track, with rounded toes.
+const FAMILY_MODES: [&str; 5] = ["families", "natural", "bevelled", "widened", "rounded"];
 
 /// Whether scene `terrain` of `mode`, expected `want` on `config`'s rig, is excused: a
 /// climbable surface the camera meets at grazing incidence somewhere in the tracks (a
@@ -535,6 +536,7 @@ fn draw(
                 "natural" => Some((1, families::restyled)),
                 "bevelled" => Some((2, families::bevelled)),
                 "widened" => Some((3, families::widened)),
+                "rounded" => Some((4, families::rounded)),
                 _ => None,
             };
             if let Some((stream, restyle)) = restyle {

@@ -263,6 +263,7 @@ fn a_fakenect_session_gives_the_verdicts_of_its_frames() {
         alpha_deg: 0.0,
         extent: Extent::Full,
         cap_m: None,
+        round_m: None,
     }]);
     let frames = [
         sim::render(&Terrain::flat(), &config),

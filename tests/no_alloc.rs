@@ -29,6 +29,7 @@ fn processing_allocates_nothing_after_warm_up() {
         alpha_deg,
         extent,
         cap_m: None,
+        round_m: None,
     };
     let scenes = [
         Terrain::flat(),

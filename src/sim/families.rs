@@ -103,6 +103,18 @@ impl Family {
         Family::TwoRamps,
     ];
 
+    /// The families with a ramp or a descent (its toe a straight line): the ones
+    /// [`rounded`] draws another way.
+    pub const RAMPED: [Family; 7] = [
+        Family::OneTrackRamp,
+        Family::RampOutOfView,
+        Family::HalfPlaneDescent,
+        Family::OneTrackDescent,
+        Family::RoughRamp,
+        Family::TwoRamps,
+        Family::RockOnRamp,
+    ];
+
     /// A short name for reports.
     pub fn name(self) -> &'static str {
         match self {
@@ -532,6 +544,26 @@ pub fn widened<R: Rng>(rng: &mut R, mut d: Draw) -> Draw {
                     }
                 }
             }
+        }
+    }
+    d
+}
+
+/// Most length over which [`rounded`] rounds a ramp's toe, metres.
+pub const MAX_TOE_ROUNDING_M: f64 = 0.4;
+
+/// `d` with every ramp's toe rounded, as terrain is and a renderer other than ours
+/// might draw it: over 0.05-[`MAX_TOE_ROUNDING_M`] across the toe line, a parabola
+/// tangent to the ground before and to the face after ([`super::terrain::toe_rounding`]).
+/// The face and the ground still meet at the drawn toe line, so the expectation
+/// stands: the paper's toe is where the two planes meet. The face rises (or falls)
+/// from up to 0.2 m before it, gently.
+pub fn rounded<R: Rng>(rng: &mut R, mut d: Draw) -> Draw {
+    for e in &mut d.terrain.elements {
+        if matches!(e, Element::Ramp { .. }) {
+            *e = e
+                .clone()
+                .toe_rounded(Some(rng.gen_range(0.05..MAX_TOE_ROUNDING_M)));
         }
     }
     d

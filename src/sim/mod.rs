@@ -251,6 +251,7 @@ mod tests {
             alpha_deg: a,
             extent: Extent::Full,
             cap_m: None,
+            round_m: None,
         }]);
         let f = render(&t, &c);
         let (tg, (sa, ca)) = (g.to_radians().tan(), a.to_radians().sin_cos());
@@ -297,6 +298,41 @@ mod tests {
             }
         }
         assert!(on_wall > 50, "{on_wall}");
+    }
+
+    #[test]
+    fn a_rounded_toe_is_hit_where_the_hand_calculation_says() {
+        // A 22° ramp whose toe line at x = 1.3 m is rounded over 0.36 m: every pixel
+        // that sees the rounding (1.12 m < x < 1.48 m) sees the parabola
+        // tan 22° · (x − 1.12)² / 0.72, within the depth's millimetre.
+        let c = Config::default();
+        let (w, h) = (c.camera.width as usize, c.camera.height as usize);
+        let p = Projector::new(&c, w, h);
+        let t = Terrain::new(vec![
+            Element::ramp(1.3, 0.0, 22.0, 0.0, Extent::Full).toe_rounded(Some(0.36))
+        ]);
+        let f = render(&t, &c);
+        let tan = 22f64.to_radians().tan();
+        let mut on_rounding = 0;
+        for v in (0..h).step_by(4) {
+            for u in (0..w).step_by(8) {
+                let got = f64::from(f.pixels()[v * w + u]);
+                if got <= 0.0 {
+                    continue;
+                }
+                let hit = p.point(u, v, got / 1000.0);
+                if (1.12..1.48).contains(&hit.x) {
+                    let want = tan * (hit.x - 1.12).powi(2) / 0.72;
+                    assert!(
+                        (hit.z - want).abs() < 0.002,
+                        "({u},{v}) {} vs {want}",
+                        hit.z
+                    );
+                    on_rounding += 1;
+                }
+            }
+        }
+        assert!(on_rounding > 100, "{on_rounding}");
     }
 
     #[test]
@@ -424,10 +460,10 @@ mod tests {
 
     #[test]
     fn the_march_skips_no_ground_before_its_bound() {
-        // Every family's scenes (ramps, steps, blocks, stones, rough ground) on random
-        // rigs, from a pose off the origin: along each pixel's ray, the ground lies
-        // below the ray everywhere before `reach`, so skipping the height queries
-        // there cannot change a depth.
+        // Every family's scenes (ramps, some with rounded toes, steps, blocks, stones,
+        // rough ground) on random rigs, from a pose off the origin: along each
+        // pixel's ray, the ground lies below the ray everywhere before `reach`, so
+        // skipping the height queries there cannot change a depth.
         use rand::SeedableRng;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(77);
         let (mut skipped, mut marched) = (0.0, 0.0);
@@ -436,6 +472,9 @@ mod tests {
             let mut d = families::draw(&mut rng, *family, rig);
             if i % 2 == 1 {
                 d = families::restyled(&mut rng, d);
+            }
+            if i % 3 == 2 {
+                d = families::rounded(&mut rng, d);
             }
             let c = d.rig.config;
             let (w, h) = (c.camera.width as usize, c.camera.height as usize);

@@ -26,6 +26,7 @@ pub fn workcase_scene<R: Rng>(rng: &mut R, i: usize) -> (Terrain, Expectation) {
         alpha_deg,
         extent,
         cap_m: cap,
+        round_m: None,
     };
     let down = -g.min(20.0);
     let (el, wc, alpha, gradient) = match i % 8 {
@@ -78,6 +79,7 @@ pub fn hazard_scene_within<R: Rng>(
         alpha_deg: 0.0,
         extent: e,
         cap_m: None,
+        round_m: None,
     };
     use Decision::{Go, Stop};
     use HazardKind as K;
@@ -201,6 +203,7 @@ pub fn edge_scene_within<R: Rng>(
             alpha_deg: 0.0,
             extent: [Extent::Full, track][rng.gen_range(0..2)],
             cap_m: None,
+            round_m: None,
         },
         2 => Element::Block {
             x_m: x,
@@ -221,6 +224,7 @@ pub fn edge_scene_within<R: Rng>(
                 alpha_deg: sign * rng.gen_range(20.0..60.0),
                 extent: if full { Extent::Full } else { track },
                 cap_m: None,
+                round_m: None,
             }
         }
     };
@@ -273,6 +277,7 @@ pub fn oblique_scene_within<R: Rng>(
         alpha_deg: alpha,
         extent,
         cap_m: None,
+        round_m: None,
     };
     (
         Terrain::new(vec![ramp]),

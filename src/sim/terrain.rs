@@ -100,6 +100,13 @@ pub enum Element {
         extent: Extent,
         /// Largest height change of the face, metres (a plateau beyond).
         cap_m: Option<f64>,
+        /// Length across the toe line over which the toe is rounded, metres: a
+        /// parabola centred on the toe line, tangent to the ground before it and to
+        /// the face after it, so the two planes still meet at the toe line
+        /// ([`toe_rounding`]). `None` (or 0): a sharp toe. The plateau's edge stays
+        /// sharp.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        round_m: Option<f64>,
     },
     /// A vertical step up (height > 0) or down at `x_m`.
     Step {
@@ -281,6 +288,7 @@ impl Element {
             alpha_deg,
             extent,
             cap_m: None,
+            round_m: None,
         }
     }
 
@@ -294,6 +302,15 @@ impl Element {
             height_m,
             shape,
         }
+    }
+
+    /// This ramp with its toe rounded over `round_m` metres across the toe line
+    /// ([`toe_rounding`]; `None` or 0: sharp); other elements are returned unchanged.
+    pub fn toe_rounded(mut self, round: Option<f64>) -> Element {
+        if let Element::Ramp { round_m, .. } = &mut self {
+            *round_m = round;
+        }
+        self
     }
 
     /// This ramp with a plateau `cap_m` metres above (or below) its toe; other
@@ -314,8 +331,9 @@ impl Element {
                 alpha_deg,
                 extent,
                 cap_m,
+                round_m,
             } => {
-                let trig = RampTrig::new(alpha_deg, gradient_deg);
+                let trig = RampTrig::new(alpha_deg, gradient_deg, round_m);
                 trig.height(x, y, toe_x_m, ref_y_m, extent, cap_m)
             }
             Element::Step {
@@ -451,6 +469,22 @@ impl Element {
     }
 }
 
+/// How far past the toe line a ramp's face stands, per unit of its tangent, at
+/// `across` metres past it (negative before it), with its toe rounded over `round`
+/// metres: `across` past `round / 2`, nothing before `−round / 2`, and between
+/// them the parabola (across + round / 2)² / (2 round), which meets both with their
+/// slope. It lies over both lines, by at most `round / 8` at the toe line.
+pub fn toe_rounding(across: f64, round: f64) -> f64 {
+    let half = 0.5 * round;
+    if across >= half {
+        across
+    } else if across <= -half {
+        0.0
+    } else {
+        (across + half).powi(2) / (2.0 * round)
+    }
+}
+
 /// A ramp's trigonometry, which a [`HeightField`] computes once and not per query.
 #[derive(Debug, Clone, Copy)]
 struct RampTrig {
@@ -459,15 +493,18 @@ struct RampTrig {
     sin: f64,
     /// Tangent of the gradient.
     tan: f64,
+    /// Length of the toe's rounding, metres (0: sharp).
+    round: f64,
 }
 
 impl RampTrig {
-    fn new(alpha_deg: f64, gradient_deg: f64) -> Self {
+    fn new(alpha_deg: f64, gradient_deg: f64, round_m: Option<f64>) -> Self {
         let a = alpha_deg.to_radians();
         RampTrig {
             cos: a.cos(),
             sin: a.sin(),
             tan: gradient_deg.to_radians().tan(),
+            round: round_m.unwrap_or(0.0).max(0.0),
         }
     }
 
@@ -493,10 +530,10 @@ impl RampTrig {
             return 0.0;
         }
         let across = self.across(x, y, toe_x, ref_y);
-        if across <= 0.0 {
+        if across <= -0.5 * self.round {
             return 0.0;
         }
-        let h = across * self.tan;
+        let h = toe_rounding(across, self.round) * self.tan;
         share
             * match cap {
                 Some(cap) => h.clamp(-cap, cap),
@@ -757,7 +794,10 @@ impl Upper {
     fn at(&self, x: f64, y: f64) -> f64 {
         match *self {
             Upper::Ramp(trig, [toe_x, ref_y], cap) => {
-                let h = (trig.across(x, y, toe_x, ref_y) * trig.tan).max(0.0);
+                // A rounded toe lies under the face's line moved back by half its
+                // rounding (`toe_rounding`).
+                let past = trig.across(x, y, toe_x, ref_y) + 0.5 * trig.round;
+                let h = (past * trig.tan).max(0.0);
                 cap.map_or(h, |cap| h.min(cap))
             }
             Upper::Step { x: edge, height } => {
@@ -790,8 +830,8 @@ impl Upper {
         let mut put = |t: Option<f64>| kept &= t.is_none_or(&mut push);
         match *self {
             Upper::Ramp(trig, [toe_x, ref_y], cap) => {
-                // The distance past the toe line, a + b·t.
-                let a = trig.across(origin[0], origin[1], toe_x, ref_y);
+                // The distance past the bound's toe line, a + b·t.
+                let a = trig.across(origin[0], origin[1], toe_x, ref_y) + 0.5 * trig.round;
                 let b = dir[0] * trig.cos + dir[1] * trig.sin;
                 put(at(a, b, 0.0));
                 if let Some(cap) = cap {
@@ -815,7 +855,8 @@ impl HeightField<'_> {
     /// The least `t` in `[t0, t1]` at which the ray `origin + t·dir` (terrain frame,
     /// metres) may meet the ground: before it the ray stays above an upper bound on
     /// the height, in which a rising ramp is the half-plane past its toe line (its
-    /// extent aside), a step up the half-plane past its edge, a block, rock or stone
+    /// extent aside; a rounded toe's line moved back by half its rounding), a step up
+    /// the half-plane past its edge, a block, rock or stone
     /// the square about it, and any other element its highest point everywhere. `t1`
     /// when it never comes down to that bound. The bound is piecewise linear along
     /// the ray, so the answer is exact up to rounding: [`super::render`] only skips
@@ -894,8 +935,9 @@ impl Terrain {
                 Element::Ramp {
                     gradient_deg,
                     alpha_deg,
+                    round_m,
                     ..
-                } => Prepared::Ramp(RampTrig::new(alpha_deg, gradient_deg)),
+                } => Prepared::Ramp(RampTrig::new(alpha_deg, gradient_deg, round_m)),
                 _ => Prepared::Plain,
             })
             .collect();
@@ -941,6 +983,49 @@ mod tests {
         let h = (1.0 - a) * ((1.0 - b) * at(0.0, 0.0) + b * at(0.0, 1.0))
             + a * ((1.0 - b) * at(1.0, 0.0) + b * at(1.0, 1.0));
         h.clamp(-t.amplitude, t.amplitude)
+    }
+
+    #[test]
+    fn a_rounded_toe_is_the_parabola_tangent_to_both_planes() {
+        // A 20° ramp whose toe line at x = 1.5 m is rounded over 0.4 m: flat to
+        // x = 1.3, the face from x = 1.7, and between them tan 20° · (x − 1.3)² / 0.8,
+        // which stands tan 20° · 0.4 / 8 = 1.820 cm over the toe line.
+        let t = Terrain::new(vec![
+            Element::ramp(1.5, 0.0, 20.0, 0.0, Extent::Full).toe_rounded(Some(0.4))
+        ]);
+        let tan = 20f64.to_radians().tan();
+        for (x, want) in [
+            (1.0, 0.0),
+            (1.3, 0.0),
+            (1.4, tan * 0.01 / 0.8),
+            (1.5, tan * 0.05),
+            (1.6, tan * 0.09 / 0.8),
+            (1.7, tan * 0.2),
+            (2.0, tan * 0.5),
+        ] {
+            let got = t.height(x, 0.3);
+            assert!((got - want).abs() < 1e-12, "x {x}: {got} vs {want}");
+        }
+        assert!((t.height(1.5, 0.0) - 0.018199).abs() < 1e-6);
+        // The slope is continuous: 0 at the start, tan 20° at the end.
+        let slope = |x: f64| (t.height(x + 1e-6, 0.0) - t.height(x - 1e-6, 0.0)) / 2e-6;
+        assert!(slope(1.3).abs() < 1e-5 && (slope(1.7) - tan).abs() < 1e-5);
+        // The same through the height field (its prepared trigonometry), and a
+        // descent's rounding lies under both its planes.
+        let field = t.field();
+        assert!((field.height(1.6, -0.2) - tan * 0.09 / 0.8).abs() < 1e-12);
+        let down = Terrain::new(vec![
+            Element::ramp(1.0, 0.0, -10.0, 0.0, Extent::Full).toe_rounded(Some(0.3))
+        ]);
+        let tan10 = 10f64.to_radians().tan();
+        assert!((down.height(1.0, 0.0) + tan10 * 0.3 / 8.0).abs() < 1e-12);
+        assert_eq!(down.height(0.85, 0.0), 0.0);
+        // A sharp toe (no rounding, or 0) as before.
+        let sharp = Terrain::new(vec![
+            Element::ramp(1.5, 0.0, 20.0, 0.0, Extent::Full).toe_rounded(Some(0.0))
+        ]);
+        assert_eq!(sharp.height(1.5, 0.0), 0.0);
+        assert!((sharp.height(1.6, 0.0) - tan * 0.1).abs() < 1e-12);
     }
 
     #[test]

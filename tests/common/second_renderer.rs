@@ -322,8 +322,13 @@ pub fn planar(terrain: &Terrain) -> Option<Ground> {
                 gradient_deg,
                 alpha_deg,
                 cap_m,
+                round_m,
                 ..
             } => {
+                // Planes only: a rounded toe is no plane.
+                if round_m.is_some_and(|r| r > 0.0) {
+                    return None;
+                }
                 let (tg, (sa, ca)) = (
                     gradient_deg.to_radians().tan(),
                     alpha_deg.to_radians().sin_cos(),
