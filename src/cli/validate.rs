@@ -38,6 +38,8 @@ pub fn run(args: Args) -> anyhow::Result<ExitCode> {
         report += &validate::bevelled_report(&bevelled, families, validate::FAMILY_SEED);
         let widened = validate::run_families_widened(families, validate::FAMILY_SEED)?;
         report += &validate::widened_report(&widened, families, validate::FAMILY_SEED);
+        let rounded = validate::run_families_rounded(families, validate::FAMILY_SEED)?;
+        report += &validate::rounded_report(&rounded, families, validate::FAMILY_SEED);
         let drive = validate::run_memory_drive(validate::FAMILY_SEED)?;
         report += &validate::memory_drive_report(&drive, validate::FAMILY_SEED);
     }
