@@ -79,6 +79,9 @@ struct Fixed {
     cfg: Config,
     spec: GridSpec,
     region: Vec<Region>,
+    /// Each region's strips, indexed by `Region as usize`: the bands lie side by side
+    /// across the corridor, so each is one run of strips.
+    strip_runs: [std::ops::Range<usize>; 3],
     expected: Vec<bool>,
     expected_count: usize,
     camera: [f32; 3],
@@ -137,6 +140,8 @@ pub(crate) struct Frame<'a> {
     pub beyond: &'a [bool],
     pub expected: &'a [bool],
     pub region: &'a [Region],
+    /// Each region's run of strips ([`Frame::strips`]).
+    strip_runs: &'a [std::ops::Range<usize>; 3],
     pub cfg: &'a Config,
     pub camera: [f32; 3],
     /// The camera's vertical focal length, pixels: its rows per radian.
@@ -158,6 +163,7 @@ impl<'a> Frame<'a> {
             beyond: &view.beyond,
             expected: &fixed.expected,
             region: &fixed.region,
+            strip_runs: &fixed.strip_runs,
             cfg: &fixed.cfg,
             camera: fixed.camera,
             fy_px: fixed.fy_px,
@@ -165,14 +171,42 @@ impl<'a> Frame<'a> {
         }
     }
 
-    /// Strips (iy) of one region.
-    pub fn strips(&self, r: Region) -> impl Iterator<Item = usize> + '_ {
-        self.region
-            .iter()
-            .enumerate()
-            .filter(move |(_, &q)| q == r)
-            .map(|(i, _)| i)
+    /// Strips (iy) of one region, in order: one run (see [`strip_runs`]).
+    pub fn strips(&self, r: Region) -> std::ops::Range<usize> {
+        self.strip_runs[r as usize].clone()
     }
+}
+
+/// The region of a strip whose centre lies `y` metres left of the centre line, with
+/// a belly band `bhw` metres either side of it.
+fn region_of(y: f32, bhw: f32) -> Region {
+    if y.abs() < bhw {
+        Region::Belly
+    } else if y > 0.0 {
+        Region::Left
+    } else {
+        Region::Right
+    }
+}
+
+/// Each region's strips as one run, indexed by `Region as usize` (empty where a
+/// region has none). `region` assigns strips by their centre's y, which rises with the
+/// strip index, so each region's strips are contiguous: right, belly, left.
+fn strip_runs(region: &[Region]) -> [std::ops::Range<usize>; 3] {
+    [Region::Right, Region::Belly, Region::Left].map(|r| {
+        let first = region.iter().position(|&q| q == r);
+        let last = region.iter().rposition(|&q| q == r);
+        match first.zip(last) {
+            Some((a, b)) => {
+                debug_assert!(
+                    region[a..=b].iter().all(|&q| q == r),
+                    "{r:?} not contiguous"
+                );
+                a..b + 1
+            }
+            None => 0..0,
+        }
+    })
 }
 
 impl Analyzer {
@@ -181,17 +215,9 @@ impl Analyzer {
     pub fn new(config: &Config, spec: GridSpec, projector: &Projector) -> Result<Self, Error> {
         let bhw = config.rover.belly_half_width_m as f32;
         let region: Vec<Region> = (0..spec.ny)
-            .map(|iy| {
-                let y = spec.y_centre(iy);
-                if y.abs() < bhw {
-                    Region::Belly
-                } else if y > 0.0 {
-                    Region::Left
-                } else {
-                    Region::Right
-                }
-            })
+            .map(|iy| region_of(spec.y_centre(iy), bhw))
             .collect();
+        let strip_runs = strip_runs(&region);
         let expected = visibility::expected_cells(&spec, projector, config);
         let expected_count = expected.iter().filter(|&&e| e).count();
         let paths = visibility::ShadowPaths::new(&spec, projector.origin(), &expected);
@@ -210,6 +236,7 @@ impl Analyzer {
                 cfg: config.clone(),
                 spec,
                 region,
+                strip_runs,
                 expected,
                 expected_count,
                 camera: projector.origin(),
@@ -643,6 +670,23 @@ fn decide(verdict: &mut Verdict, too_little: bool, nearest_unseen: f32) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn each_region_s_strips_are_one_run_the_filter_finds() {
+        // Belly half-widths from none to the whole corridor, odd and even strip counts.
+        for bhw in [0.0f32, 0.1, 0.2, 0.23, 0.35, 0.7, 2.0] {
+            for ny in [1usize, 2, 7, 28, 29] {
+                let y = |iy: usize| -0.7 + (iy as f32 + 0.5) * 1.4 / ny as f32;
+                let region: Vec<Region> = (0..ny).map(|iy| region_of(y(iy), bhw)).collect();
+                let runs = strip_runs(&region);
+                for r in [Region::Right, Region::Belly, Region::Left] {
+                    let filtered: Vec<usize> = (0..ny).filter(|&i| region[i] == r).collect();
+                    let run: Vec<usize> = runs[r as usize].clone().collect();
+                    assert_eq!(run, filtered, "{r:?}, belly {bhw}, {ny} strips");
+                }
+            }
+        }
+    }
 
     #[test]
     fn a_stop_names_first_the_hazard_that_stops_the_rover() {

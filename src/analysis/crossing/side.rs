@@ -58,7 +58,11 @@ pub fn side_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             let Some(out) = iy.checked_add_signed(toward).filter(|&o| o < s.ny) else {
                 return false;
             };
-            let Some(top) = ground(ix, iy).filter(|_| outside(ix, out)) else {
+            // The neighbour outside the image first: most cells have none.
+            if !outside(ix, out) {
+                return false;
+            }
+            let Some(top) = ground(ix, iy) else {
                 return false;
             };
             // Down the flank, away from the edge, while each strip lies lower.
