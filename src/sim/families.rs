@@ -554,7 +554,7 @@ pub const MAX_TOE_ROUNDING_M: f64 = 0.4;
 
 /// `d` with every ramp's toe rounded, as terrain is and a renderer other than ours
 /// might draw it: over 0.05-[`MAX_TOE_ROUNDING_M`] across the toe line, a parabola
-/// tangent to the ground before and to the face after ([`super::terrain::toe_rounding`]).
+/// tangent to the ground before and to the face after ([`super::toe_rounding`]).
 /// The face and the ground still meet at the drawn toe line, so the expectation
 /// stands: the paper's toe is where the two planes meet. The face rises (or falls)
 /// from up to 0.2 m before it, gently.

@@ -12,7 +12,7 @@ mod terrain;
 
 pub use catalogue::{catalogue, Expectation, Scene, SceneConfig, Tolerance, CLEAN, NOISY};
 pub use noise::{FlyingPixels, KinectNoise};
-pub use terrain::{Element, Extent, HeightField, StoneShape, Terrain, ROUGH_WAVES};
+pub use terrain::{toe_rounding, Element, Extent, HeightField, StoneShape, Terrain, ROUGH_WAVES};
 
 use nalgebra::Vector3;
 use rover_terrain_drivers::DepthFrame;

@@ -103,8 +103,8 @@ pub enum Element {
         /// Length across the toe line over which the toe is rounded, metres: a
         /// parabola centred on the toe line, tangent to the ground before it and to
         /// the face after it, so the two planes still meet at the toe line
-        /// ([`toe_rounding`]). `None` (or 0): a sharp toe. The plateau's edge stays
-        /// sharp.
+        /// ([`crate::sim::toe_rounding`]). `None` (or 0): a sharp toe. The plateau's
+        /// edge stays sharp.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         round_m: Option<f64>,
     },
@@ -304,8 +304,9 @@ impl Element {
         }
     }
 
-    /// This ramp with its toe rounded over `round_m` metres across the toe line
-    /// ([`toe_rounding`]; `None` or 0: sharp); other elements are returned unchanged.
+    /// This ramp with its toe rounded over `round` metres across the toe line
+    /// ([`crate::sim::toe_rounding`]; `None` or 0: sharp); other elements are
+    /// returned unchanged.
     pub fn toe_rounded(mut self, round: Option<f64>) -> Element {
         if let Element::Ramp { round_m, .. } = &mut self {
             *round_m = round;
