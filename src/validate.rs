@@ -645,62 +645,69 @@ pub fn families_report(results: &[FamilyResult], per_family: usize, seed: u64) -
 
 /// The restyled family sweep ([`run_families_restyled`]) as a Markdown section.
 pub fn restyled_report(results: &[FamilyResult], per_family: usize, seed: u64) -> String {
-    let mut s = String::new();
-    let _ = writeln!(s, "\n## Natural ground drawn another way\n");
-    let _ = writeln!(
-        s,
+    styled_section(
+        "Natural ground drawn another way",
         "Scenes of the natural-ground families above, drawn as there but with their rough ground as \
          value noise (heights uniform within ±2.5 cm on a lattice as fine as the correlation \
          length, blended by a smoothstep: steeper bumps than the plane waves') and each rock as \
          a cone, a spherical cap, a Gaussian mound or a boulder (a superellipsoid with steep \
-         flanks) of the same height and footprint (`sim::families::restyled`).\n"
-    );
-    s + &families_table(results, per_family, seed)
+         flanks) of the same height and footprint (`sim::families::restyled`).\n",
+        results,
+        (per_family, seed),
+    )
 }
 
 /// The bevelled family sweep ([`run_families_bevelled`]) as a Markdown section.
 pub fn bevelled_report(results: &[FamilyResult], per_family: usize, seed: u64) -> String {
-    let mut s = String::new();
-    let _ = writeln!(s, "\n## Bands with sloping sides\n");
-    let _ = writeln!(
-        s,
+    styled_section(
+        "Bands with sloping sides",
         "Scenes of the families above whose terrain has bands (a ramp or a descent under one \
          track, ground falling away beside a track, a ramp under each track), drawn as there \
          but with each band's vertical sides sloping: the band's height fades linearly over \
          2-15 cm centred on its edge, as a renderer that samples a height map that far apart \
-         and interpolates draws a vertical face (`sim::families::bevelled`).\n"
-    );
-    s + &families_table(results, per_family, seed)
+         and interpolates draws a vertical face (`sim::families::bevelled`).\n",
+        results,
+        (per_family, seed),
+    )
 }
 
 /// The widened family sweep ([`run_families_widened`]) as a Markdown section.
 pub fn widened_report(results: &[FamilyResult], per_family: usize, seed: u64) -> String {
-    let mut s = String::new();
-    let _ = writeln!(s, "\n## Bands wider than the track\n");
-    let _ = writeln!(
-        s,
+    styled_section(
+        "Bands wider than the track",
         "Scenes of the families with bands, drawn as there but with each band under one side \
          wider than the wheel track: its inner edge 0-15 cm into the belly band (so the belly \
          band's strips beside the track lie on the ramp or in the trench, and the band's side \
          face stands inside the belly band), a one-track band's outer edge 0-40 cm past the \
-         track's (`sim::families::widened`).\n"
-    );
-    s + &families_table(results, per_family, seed)
+         track's (`sim::families::widened`).\n",
+        results,
+        (per_family, seed),
+    )
 }
 
 /// The rounded family sweep ([`run_families_rounded`]) as a Markdown section.
 pub fn rounded_report(results: &[FamilyResult], per_family: usize, seed: u64) -> String {
-    let mut s = String::new();
-    let _ = writeln!(s, "\n## Rounded toes\n");
-    let _ = writeln!(
-        s,
+    styled_section(
+        "Rounded toes",
         "Scenes of the families with a ramp or a descent, drawn as there but with each toe \
          rounded: over 5-40 cm across the toe line the ground follows a parabola tangent to the \
          ground before and to the face after, so the two planes still meet at the drawn toe \
          line, which stays the expected toe (`sim::families::rounded`). The bars are those \
-         above.\n"
-    );
-    s + &families_table(results, per_family, seed)
+         above.\n",
+        results,
+        (per_family, seed),
+    )
+}
+
+/// A family sweep drawn another way as a Markdown section: its `title`, the `intro`
+/// saying how the scenes differ (ending in a newline), and the table.
+fn styled_section(
+    title: &str,
+    intro: &str,
+    results: &[FamilyResult],
+    (per_family, seed): (usize, u64),
+) -> String {
+    format!("\n## {title}\n\n{intro}\n") + &families_table(results, per_family, seed)
 }
 
 fn families_table(results: &[FamilyResult], per_family: usize, seed: u64) -> String {
