@@ -112,10 +112,10 @@ struct Options {
     noise: Noise,
     /// EXACT=1: render with the second renderer.
     exact: bool,
-    /// ALL=1: print every frame's verdict, passed or not.
-    all: bool,
-    /// WANT=1: also each frame's expectation, on a line of its own.
-    want_too: bool,
+    /// ALL=1 and WANT=1: what to print of every frame.
+    print: Printing,
+    /// DUMP=DIR: where to write the failing scenes (with `ALL=1`, every scene).
+    dump: Option<std::path::PathBuf>,
     /// APPROACH=BACK_M,STEP_M,AHEAD_M (or anything else for 1,0.1,1): drive up to
     /// each false go.
     approach: Option<Drive>,
@@ -140,8 +140,11 @@ impl Options {
             only: env("ONLY").map(|v| v.split(',').filter_map(|s| s.parse().ok()).collect()),
             noise: Noise::parse(env("NOISE"), env("FLYING")),
             exact: on("EXACT"),
-            all: on("ALL"),
-            want_too: on("WANT"),
+            print: Printing {
+                all: on("ALL"),
+                want_too: on("WANT"),
+            },
+            dump: env("DUMP").map(std::path::PathBuf::from),
             approach: env("APPROACH").map(|v| {
                 let p: Vec<f64> = v.split(',').filter_map(|s| s.parse().ok()).collect();
                 match p[..] {
@@ -230,6 +233,49 @@ impl Noise {
     }
 }
 
+/// What to print of every frame: `ALL=1` its verdict (and the obstacles whose top is
+/// out of view), `WANT=1` its expectation.
+#[derive(Debug, Clone, Copy)]
+struct Printing {
+    all: bool,
+    want_too: bool,
+}
+
+impl Printing {
+    /// Print frame `label`'s verdict `v`, its expectation `want` and each of `tops`
+    /// (the obstacles whose top is out of view; `excused`: whether they passed `v`),
+    /// as asked.
+    fn frame(
+        self,
+        label: &str,
+        v: &Verdict,
+        want: &Expectation,
+        (tops, excused): (&[sim::sight::UnseenTop], bool),
+    ) {
+        if self.all {
+            println!(
+                "{label} {:?} hazards={:?} feature={:?} tilt={:?} seen_to={:?}",
+                v.decision, v.hazards, v.feature, v.tilt, v.seen_to_m
+            );
+        }
+        if self.want_too {
+            println!("want {label} {want:?}");
+        }
+        if self.all {
+            for o in tops {
+                println!(
+                    "TOP {label} {:?}: a top at ({:.2}, {:.2}, {:.3}) m out of view{}",
+                    v.decision,
+                    o.top.x,
+                    o.top.y,
+                    o.top.z,
+                    if excused { ", excused" } else { "" }
+                );
+            }
+        }
+    }
+}
+
 fn main() {
     let Options {
         mode,
@@ -240,8 +286,8 @@ fn main() {
         only,
         noise,
         exact,
-        all,
-        want_too,
+        print,
+        dump: dump_dir,
         approach,
         hold,
         max_range,
@@ -276,8 +322,9 @@ fn main() {
         let unseen_tops = sim::sight::unseen_tops(&terrain, &config);
         for noisy in [false, true] {
             let mut f = frame.clone();
+            let noise_seed = seed * 1000 + i as u64;
             if noisy {
-                noise.apply(seed * 1000 + i as u64, &mut f, &config);
+                noise.apply(noise_seed, &mut f, &config);
             }
             let v = pipeline.process(&f).expect("frame fits");
             if unseen {
@@ -292,38 +339,18 @@ fn main() {
             } else {
                 judge(mode, &want, if noisy { &tol.1 } else { &tol.0 }, v)
             };
-            if all {
-                println!(
-                    "#{i} noisy={noisy} {:?} hazards={:?} feature={:?} tilt={:?} seen_to={:?}",
-                    v.decision, v.hazards, v.feature, v.tilt, v.seen_to_m
-                );
-            }
-            if want_too {
-                println!("want #{i} noisy={noisy} {want:?}");
-            }
-            if all {
-                for o in &unseen_tops {
-                    println!(
-                        "TOP #{i} noisy={noisy} {:?}: a top at ({:.2}, {:.2}, {:.3}) m out of view{}",
-                        v.decision,
-                        o.top.x,
-                        o.top.y,
-                        o.top.z,
-                        if top_excused_here { ", excused" } else { "" }
-                    );
-                }
-            }
+            let label = format!("#{i} noisy={noisy}");
+            print.frame(&label, v, &want, (&unseen_tops, top_excused_here));
             total += 1;
             if v.decision == Decision::Go && want.verdict != Decision::Go {
                 false_go += 1;
                 if let Some(drive) = approach {
-                    let noise = noisy.then_some((noise, seed * 1000 + i as u64));
-                    let label = format!("#{i} noisy={noisy}");
+                    let noise = noisy.then_some((noise, noise_seed));
                     approaches.drive_up(drive, hold, (&terrain, &config, noise), &label);
                 }
             }
-            if let (Ok(dir), true) = (std::env::var("DUMP"), all || !fails.is_empty()) {
-                dump(std::path::Path::new(&dir), i, &terrain, &config);
+            if let (Some(dir), true) = (&dump_dir, print.all || !fails.is_empty()) {
+                dump(dir, i, &terrain, &config);
             }
             if !fails.is_empty() {
                 failures += 1;
