@@ -9,6 +9,8 @@
 //! Projection, transform and binning are fused into [`VoxelGrid::bin`]: one pass over
 //! the depth image with the [`Projector`]'s tables, no intermediate cloud.
 
+use std::ops::Range;
+
 use wide::{f32x4, i32x4, CmpEq};
 
 use crate::config::Config;
@@ -371,16 +373,28 @@ impl Merge<'_> {
 /// k % LANES) with the `wide` crate's portable vectors, so that a stretch of one
 /// voxel's pixels is a few vector additions, not a chain of scalar ones (each waiting
 /// on the last: that chain was most of binning's time); the lanes are added in a
-/// fixed order, so the sums do not depend on the instruction set. Returns the points
-/// added.
+/// fixed order, so the sums do not depend on the instruction set. Only the columns
+/// `span` are read (the others hold no binned pixel); it starts on a whole number of
+/// lanes, so that each pixel keeps its lane and the sums are those of the whole row.
+/// Returns the points added.
 #[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
-fn merge_row(rb: &RowBuffers, acc: &mut Accumulators) -> u32 {
+fn merge_row(rb: &RowBuffers, span: Range<usize>, acc: &mut Accumulators) -> u32 {
     let n = rb
         .idx
         .len()
         .min(rb.qx.len())
         .min(rb.qy.len())
         .min(rb.qz.len());
+    debug_assert_eq!(span.start % LANES, 0, "a span starts on a lane boundary");
+    let hi = span.end.min(n);
+    let lo = span.start.min(hi);
+    let (idx, qx, qy, qz) = (
+        &rb.idx[lo..hi],
+        &rb.qx[lo..hi],
+        &rb.qy[lo..hi],
+        &rb.qz[lo..hi],
+    );
+    let n = hi - lo;
     let mut m = Merge {
         acc,
         cur: u32::MAX,
@@ -391,12 +405,12 @@ fn merge_row(rb: &RowBuffers, acc: &mut Accumulators) -> u32 {
     fn chunks(s: &[f32], whole: usize) -> &[[f32; LANES]] {
         bytemuck::cast_slice(&s[..whole])
     }
-    let ids: &[[u32; LANES]] = bytemuck::cast_slice(&rb.idx[..whole]);
+    let ids: &[[u32; LANES]] = bytemuck::cast_slice(&idx[..whole]);
     for (((i, x), y), z) in ids
         .iter()
-        .zip(chunks(&rb.qx, whole))
-        .zip(chunks(&rb.qy, whole))
-        .zip(chunks(&rb.qz, whole))
+        .zip(chunks(qx, whole))
+        .zip(chunks(qy, whole))
+        .zip(chunks(qz, whole))
     {
         m.take(
             bytemuck::cast(*i),
@@ -407,16 +421,13 @@ fn merge_row(rb: &RowBuffers, acc: &mut Accumulators) -> u32 {
         // The row's last pixels, padded with pixels not binned.
         let r = n - whole;
         let mut ids = [u32::MAX; LANES];
-        ids[..r].copy_from_slice(&rb.idx[whole..n]);
+        ids[..r].copy_from_slice(&idx[whole..n]);
         let pad = |s: &[f32]| {
             let mut a = [0.0f32; LANES];
             a[..r].copy_from_slice(&s[whole..n]);
             f32x4::from(a)
         };
-        m.take(
-            bytemuck::cast(ids),
-            &[pad(&rb.qx), pad(&rb.qy), pad(&rb.qz)],
-        );
+        m.take(bytemuck::cast(ids), &[pad(qx), pad(qy), pad(qz)]);
     }
     let (cur, run, zmax) = (m.cur, m.run.total(), m.run.zmax);
     m.binned + flush(m.acc, cur, &run, zmax)
@@ -432,6 +443,24 @@ struct RowParams {
     strides: [i32; 2],
     min_mm: u16,
     max_mm: u16,
+}
+
+impl RowParams {
+    /// The row whose ray part is `row` (the projector's row table: rover frame, per
+    /// metre of depth) of a camera at `origin` (rover frame, metres), binned into
+    /// grid `s`, depths in `[min_mm, max_mm]`.
+    fn new(s: &GridSpec, origin: [f32; 3], row: [f32; 3], (min_mm, max_mm): (u16, u16)) -> Self {
+        let inv = 1.0 / s.voxel_m;
+        RowParams {
+            r: row.map(|v| v * inv),
+            // The camera's position in voxel units relative to the grid's origin.
+            t: [0, 1, 2].map(|k| (origin[k] - s.origin[k]) * inv),
+            n: [s.nx as f32, s.ny as f32, s.nz as f32],
+            strides: [(s.ny * s.nz) as i32, s.nz as i32],
+            min_mm,
+            max_mm,
+        }
+    }
 }
 
 /// Mark in `cand` the pixels of `row` that may be mixed ([`MixedPixels`]):
@@ -475,12 +504,14 @@ fn mark_candidates(above: &[u16], row: &[u16], below: &[u16], jump: u16, cand: &
 }
 
 /// Unmark (`u32::MAX`) the binned pixels of image row `v` of `depth` (`width`
-/// wide) that `mixed` finds mixed; `jump` is [`mark_candidates`]'s. Returns how many.
+/// wide) that `mixed` finds mixed; `jump` is [`mark_candidates`]'s. Only the
+/// columns `span` hold binned pixels: the candidates are marked there (with their
+/// neighbours along the row, as over the whole row). Returns how many.
 fn drop_mixed(
     mixed: &MixedPixels,
     jump: u16,
     (depth, width): (&[u16], usize),
-    v: usize,
+    (v, span): (usize, Range<usize>),
     rb: &mut RowBuffers,
 ) -> u32 {
     let rows = depth.len() / width.max(1);
@@ -489,11 +520,28 @@ fn drop_mixed(
     // Past the image's top or bottom: the pixel itself, no jump.
     let above = if v > 0 { line(v - 1) } else { pixels };
     let below = if v + 1 < rows { line(v + 1) } else { pixels };
-    if !mark_candidates(above, pixels, below, jump, &mut rb.cand) {
+    let hi = span.end.min(width);
+    let lo = span.start.min(hi);
+    // One column more each side, for the neighbours along the row.
+    let wide = lo.saturating_sub(1)..(hi + 1).min(width);
+    if !mark_candidates(
+        &above[wide.clone()],
+        &pixels[wide.clone()],
+        &below[wide.clone()],
+        jump,
+        &mut rb.cand[wide.clone()],
+    ) {
         return 0;
     }
     let mut dropped = 0;
-    for (u, (&c, i)) in rb.cand.iter().zip(rb.idx.iter_mut()).enumerate() {
+    for (u, (&c, i)) in rb
+        .cand
+        .iter()
+        .zip(rb.idx.iter_mut())
+        .enumerate()
+        .take(hi)
+        .skip(lo)
+    {
         if c != 0 && *i != u32::MAX && mixed.is_mixed(depth, width, u, v) {
             *i = u32::MAX;
             dropped += 1;
@@ -545,8 +593,76 @@ fn see_columns(
     *left -= newly;
 }
 
+/// The columns of a row (`p`) that can hold a point inside the grid, rounded out to
+/// whole [`LANES`]. Every depth in range in the row lies in `[near_mm, p.max_mm]`,
+/// and a pixel's x (and y) moves monotonically with its depth, in floating point too
+/// (the same products and sums as [`index_row`]'s, each rounded monotonically): a
+/// column whose x (or y) lies on the same side outside the grid at both ends lies
+/// there at every depth between. Along the row, a pinhole's ray tables run
+/// monotonically too ([`ColumnRays::order`]), so the columns outside that way on the
+/// row's one side are a prefix, those on the other a suffix, each found by bisection.
+/// A row looking past the corridor's sides (far rows: at 3 m a VGA Kinect's row
+/// spans 2.2 times the corridor's width) bins only its middle. The whole row when
+/// the tables are not monotonic; an empty range when no column can hold a point.
+fn grid_columns(cols: &ColumnRays, p: &RowParams, near_mm: u16) -> Range<usize> {
+    let n = cols.x.len().min(cols.y.len());
+    let Some(ascending) = cols.order else {
+        return 0..n;
+    };
+    let (near, far) = (f32::from(near_mm) * 0.001, f32::from(p.max_mm) * 0.001);
+    // Whether column k's axis a lies below the grid at both depths, and at or past its
+    // end at both: at every depth between.
+    let off = |k: usize, a: usize| {
+        let ray = [cols.x[k], cols.y[k]][a];
+        let (t, r, end) = (p.t[a], p.r[a], p.n[a]);
+        let (u, w) = (t + near * (ray + r), t + far * (ray + r));
+        (u < 0.0 && w < 0.0, u >= end && w >= end)
+    };
+    // Outside on the row's start side: below the grid on an ascending axis, past it
+    // on a descending one; and on its end side.
+    let first_out = |k: usize| {
+        (0..2).any(|a| {
+            let (below, past) = off(k, a);
+            if ascending[a] {
+                below
+            } else {
+                past
+            }
+        })
+    };
+    let last_out = |k: usize| {
+        (0..2).any(|a| {
+            let (below, past) = off(k, a);
+            if ascending[a] {
+                past
+            } else {
+                below
+            }
+        })
+    };
+    let lo = partition_point(n, first_out);
+    let hi = partition_point(n, |k| !last_out(k)).max(lo);
+    lo / LANES * LANES..hi.next_multiple_of(LANES).min(n)
+}
+
+/// The first of `0..n` for which `pred` is false, `pred` being true on a prefix.
+fn partition_point(n: usize, pred: impl Fn(usize) -> bool) -> usize {
+    let (mut lo, mut hi) = (0, n);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if pred(mid) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
 /// The branch-free half of binning one row: every pixel's voxel index (`u32::MAX`
-/// when out of range or outside the grid) and position in voxel units. Returns the
+/// when out of range or outside the grid, and for every pixel outside the columns
+/// `span`, which [`grid_columns`] found can hold none inside) and, in `span`,
+/// position in voxel units. Returns the
 /// number of pixels in range and how many of them fall inside the grid. Written as
 /// plain indexed arithmetic so that it vectorises; compiled for several instruction
 /// sets and picked at run time (same results on each: Rust never fuses multiply-adds
@@ -554,15 +670,31 @@ fn see_columns(
 /// again here, they cost nothing, and without the count the compiler laid the loop
 /// out so that binning flat.png took 6 % longer (rustc 1.95, `bench`).
 #[multiversion::multiversion(targets("x86_64+avx2", "x86_64+sse4.1", "aarch64+neon"))]
-fn index_row(cols: &ColumnRays, pixels: &[u16], p: RowParams, rb: &mut RowBuffers) -> [u32; 2] {
+fn index_row(
+    cols: &ColumnRays,
+    pixels: &[u16],
+    p: RowParams,
+    span: Range<usize>,
+    rb: &mut RowBuffers,
+) -> [u32; 2] {
     let n = cols.x.len().min(pixels.len()).min(rb.idx.len());
-    let (cx_t, cy_t, cz_t, pixels) = (&cols.x[..n], &cols.y[..n], &cols.z[..n], &pixels[..n]);
-    let (idx, qx, qy, qz) = (
-        &mut rb.idx[..n],
-        &mut rb.qx[..n],
-        &mut rb.qy[..n],
-        &mut rb.qz[..n],
+    let (lo, hi) = (span.start.min(n), span.end.min(n));
+    let lo = lo.min(hi);
+    rb.idx[..lo].fill(u32::MAX);
+    rb.idx[hi..].fill(u32::MAX);
+    let (cx_t, cy_t, cz_t, pixels) = (
+        &cols.x[lo..hi],
+        &cols.y[lo..hi],
+        &cols.z[lo..hi],
+        &pixels[lo..hi],
     );
+    let (idx, qx, qy, qz) = (
+        &mut rb.idx[lo..hi],
+        &mut rb.qx[lo..hi],
+        &mut rb.qy[lo..hi],
+        &mut rb.qz[lo..hi],
+    );
+    let n = hi - lo;
     let (mut valid, mut in_grid) = (0u32, 0u32);
     for k in 0..n {
         let d = pixels[k];
@@ -617,6 +749,29 @@ struct ColumnRays {
     z: Vec<f32>,
     /// The least of `x`.
     x_min: f32,
+    /// Whether `x` and `y` each run monotonically along the row, and which way
+    /// (`true`: not decreasing); `None` when one does not. A pinhole's tables do:
+    /// each is a fixed vector times the column's increasing ray slope, rounded
+    /// monotonically. [`grid_columns`] needs it.
+    order: Option<[bool; 2]>,
+}
+
+impl ColumnRays {
+    /// `projector`'s column rays in the voxel units of grid `s`.
+    fn new(projector: &Projector, s: &GridSpec) -> Self {
+        let inv = 1.0 / s.voxel_m;
+        let c = projector.col_table();
+        let axis = |k: usize| c.iter().map(|c| c[k] * inv).collect::<Vec<f32>>();
+        let (x, y, z) = (axis(0), axis(1), axis(2));
+        ColumnRays {
+            source: c.to_vec(),
+            x_min: x.iter().copied().fold(f32::INFINITY, f32::min),
+            order: monotonic(&x).zip(monotonic(&y)).map(|(x, y)| [x, y]),
+            x,
+            y,
+            z,
+        }
+    }
 }
 
 /// The depth bounds that decide which of a row's points mark a cut cell (mm).
@@ -691,6 +846,18 @@ impl ViewCut {
             }
             self.by_range[c] |= by_range;
         }
+    }
+}
+
+/// Whether `v` runs monotonically: `Some(true)` not decreasing, `Some(false)` not
+/// increasing (a constant run is both: `true`), `None` neither.
+fn monotonic(v: &[f32]) -> Option<bool> {
+    if v.windows(2).all(|w| w[0] <= w[1]) {
+        Some(true)
+    } else if v.windows(2).all(|w| w[0] >= w[1]) {
+        Some(false)
+    } else {
+        None
     }
 }
 
@@ -815,16 +982,7 @@ impl VoxelGrid {
         acc.touched.clear();
         self.view_cut.clear();
         let s = self.spec;
-        let inv = 1.0 / s.voxel_m;
-        let o = projector.origin();
-        // Camera position in voxel units relative to the grid origin.
-        let t = [
-            (o[0] - s.origin[0]) * inv,
-            (o[1] - s.origin[1]) * inv,
-            (o[2] - s.origin[2]) * inv,
-        ];
-        let (nx, ny, nz) = (s.nx as f32, s.ny as f32, s.nz as f32);
-        let (sy_stride, sx_stride) = (s.nz as i32, (s.ny * s.nz) as i32);
+        let nx = s.nx as f32;
         let width = projector.width();
         self.row.resize(width);
         // The least jump per mm of depth in 16.16 fixed point (≤ 1: never more).
@@ -832,12 +990,7 @@ impl VoxelGrid {
         let jump = (ju.min(jv) * 65536.0).clamp(0.0, 65535.0) as u16;
         if self.cols.source != projector.col_table() {
             // First frame, or a new projector (size or mount: auto-level): allocate.
-            let c = projector.col_table();
-            self.cols.source = c.to_vec();
-            self.cols.x = c.iter().map(|c| c[0] * inv).collect();
-            self.cols.y = c.iter().map(|c| c[1] * inv).collect();
-            self.cols.z = c.iter().map(|c| c[2] * inv).collect();
-            self.cols.x_min = self.cols.x.iter().copied().fold(f32::INFINITY, f32::min);
+            self.cols = ColumnRays::new(projector, &s);
         }
         let mut stats = BinStats::default();
         let min_mm = min_mm.max(1);
@@ -857,7 +1010,8 @@ impl VoxelGrid {
             .zip(depth.chunks_exact(width))
             .enumerate()
         {
-            let r = [row[0] * inv, row[1] * inv, row[2] * inv];
+            let p = RowParams::new(&s, projector.origin(), *row, (min_mm, max_mm));
+            let (r, t) = (p.r, p.t);
             // A row whose every ray runs forward and whose nearest point lies past the
             // corridor's far end (a voxel's margin for rounding) bins nothing: the
             // upper rows of a camera pitched down at ground beyond the corridor.
@@ -874,19 +1028,8 @@ impl VoxelGrid {
                 continue;
             }
             let rb = &mut self.row;
-            let [valid, in_grid] = index_row(
-                &self.cols,
-                pixels,
-                RowParams {
-                    r,
-                    t,
-                    n: [nx, ny, nz],
-                    strides: [sx_stride, sy_stride],
-                    min_mm,
-                    max_mm,
-                },
-                rb,
-            );
+            let span = grid_columns(&self.cols, &p, nearest_mm);
+            let [_, in_grid] = index_row(&self.cols, pixels, p, span.clone(), rb);
             stats.points_in += valid;
             if in_grid == 0 {
                 // Nothing to bin (a row looking past the corridor): nor to filter.
@@ -894,7 +1037,8 @@ impl VoxelGrid {
                 continue;
             }
             if mixed.is_on() {
-                stats.points_mixed += drop_mixed(mixed, jump, (depth, width), v, rb);
+                stats.points_mixed +=
+                    drop_mixed(mixed, jump, (depth, width), (v, span.clone()), rb);
             }
             if v < CUT_ROWS || near_limit > 0 {
                 let seen = (rb.idx.as_slice(), rb.col_seen.as_slice());
@@ -903,7 +1047,7 @@ impl VoxelGrid {
             }
             // The columns in range here have their topmost point behind them from now.
             see_columns(&mut rb.col_seen, pixels, range, &mut columns_left);
-            stats.points_binned += merge_row(&self.row, &mut self.acc);
+            stats.points_binned += merge_row(&self.row, span, &mut self.acc);
         }
         stats
     }
@@ -1052,7 +1196,7 @@ mod tests {
             zmax: vec![NO_POINT; 16],
             touched: Vec::with_capacity(16),
         };
-        let binned = merge_row(&rb, &mut acc);
+        let binned = merge_row(&rb, 0..rb.idx.len(), &mut acc);
         let in_grid = idx
             .iter()
             .filter(|&&i| (i as usize) < acc.sums.len())
@@ -1168,6 +1312,85 @@ mod tests {
         assert!(mixed.is_mixed(&depth, 640, 320, v));
         // Its neighbours on either surface are kept.
         assert!(!mixed.is_mixed(&depth, 640, 319, v) && !mixed.is_mixed(&depth, 640, 321, v));
+    }
+
+    #[test]
+    fn the_columns_a_row_trims_hold_no_point_inside_the_grid() {
+        // Mounts pitched 0-45°, rolled, yawed and offset (behind the grid too), three depth rows per image row,
+        // all past the row's nearest depth: at it, at the far range limit, and drawn
+        // between them with no returns among them. Every pixel outside the row's span
+        // falls outside the grid, and the far rows of most mounts are trimmed.
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut unit = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (w, h) = (160, 120);
+        let (mut trimmed, mut rows) = (0, 0);
+        for _ in 0..16 {
+            let mut c = Config::default();
+            let m = &mut c.mount;
+            m.pitch_deg = 45.0 * unit();
+            m.roll_deg = 20.0 * unit() - 10.0;
+            m.yaw_deg = 20.0 * unit() - 10.0;
+            (m.x_m, m.y_m, m.z_m) = (0.7 * unit() - 0.4, 0.4 * unit() - 0.2, 0.5 + 0.7 * unit());
+            let p = Projector::new(&c, w, h);
+            let s = GridSpec::from_config(&c);
+            let cols = ColumnRays::new(&p, &s);
+            assert!(cols.order.is_some(), "a pinhole's tables run monotonically");
+            let (min_mm, max_mm) = (400, 4500);
+            let mut rb = RowBuffers::default();
+            rb.resize(w);
+            for row in p.row_table() {
+                let params = RowParams::new(&s, p.origin(), *row, (min_mm, max_mm));
+                let near = min_mm + (unit() * f64::from(max_mm - min_mm)) as u16;
+                let span = grid_columns(&cols, &params, near);
+                let between = |_: usize| match unit() {
+                    u if u < 0.1 => 0,
+                    u => near + (u * f64::from(max_mm - near)) as u16,
+                };
+                for pixels in [
+                    vec![near; w],
+                    vec![max_mm; w],
+                    (0..w).map(between).collect(),
+                ] {
+                    index_row(&cols, &pixels, params, 0..w, &mut rb);
+                    for (k, &i) in rb.idx.iter().enumerate() {
+                        assert!(
+                            span.contains(&k) || i == u32::MAX,
+                            "column {k} outside {span:?} binned at depth {}: {:?}",
+                            pixels[k],
+                            c.mount
+                        );
+                    }
+                }
+                assert!(span.start % LANES == 0 && span.end <= w);
+                trimmed += usize::from(span.len() < w);
+                rows += 1;
+            }
+        }
+        assert!(trimmed * 4 > rows, "{trimmed} of {rows} rows trimmed");
+        // A level camera 0.5 m behind the grid: its middle row's points lie behind the
+        // grid at 0.4 m, past it at 4.5 m, inside between. Nothing is trimmed.
+        let mut c = Config::default();
+        (c.mount.pitch_deg, c.mount.x_m) = (0.0, -0.5);
+        let p = Projector::new(&c, w, h);
+        let s = GridSpec::from_config(&c);
+        let level = RowParams::new(&s, p.origin(), p.row_table()[h / 2], (400, 4500));
+        assert_eq!(grid_columns(&ColumnRays::new(&p, &s), &level, 400), 0..w);
+        // Tables that do not run monotonically are not trimmed.
+        let c = Config::default();
+        let p = Projector::new(&c, w, h);
+        let s = GridSpec::from_config(&c);
+        let mut cols = ColumnRays::new(&p, &s);
+        cols.y.swap(3, 90);
+        cols.order = monotonic(&cols.x)
+            .zip(monotonic(&cols.y))
+            .map(|(x, y)| [x, y]);
+        let far = RowParams::new(&s, p.origin(), p.row_table()[0], (400, 4500));
+        assert_eq!(grid_columns(&cols, &far, 2900), 0..w);
     }
 
     #[test]
