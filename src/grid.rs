@@ -624,30 +624,20 @@ fn grid_columns(
         let (u, w) = (t + near * (ray + r), t + far * (ray + r));
         (u < 0.0 && w < 0.0, u >= end && w >= end)
     };
-    // Outside on the row's start side: below the grid on an ascending axis, past it
-    // on a descending one; and on its end side.
-    let first_out = |k: usize| {
+    // Outside on the row's start side (`start`): below the grid on an ascending axis,
+    // past it on a descending one; on its end side the other way round.
+    let out = |k: usize, start: bool| {
         (0..2).any(|a| {
             let (below, past) = off(k, a);
-            if ascending[a] {
+            if ascending[a] == start {
                 below
             } else {
                 past
             }
         })
     };
-    let last_out = |k: usize| {
-        (0..2).any(|a| {
-            let (below, past) = off(k, a);
-            if ascending[a] {
-                past
-            } else {
-                below
-            }
-        })
-    };
-    let lo = partition_from(n, guess.start, first_out);
-    let hi = partition_from(n, guess.end, |k| !last_out(k)).max(lo);
+    let lo = partition_from(n, guess.start, |k| out(k, true));
+    let hi = partition_from(n, guess.end, |k| !out(k, false)).max(lo);
     lo..hi
 }
 
