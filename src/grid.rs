@@ -969,7 +969,7 @@ impl VoxelGrid {
     ///
     /// Each row is done in two steps: a branch-free pass that the compiler vectorises
     /// computes every pixel's voxel index (or `u32::MAX`) and its position in voxel
-    /// units; a second pass ([`merge_row`]) then adds runs of neighbouring pixels
+    /// units; a second pass (`merge_row`) then adds runs of neighbouring pixels
     /// that share a voxel in registers and touches memory once per run.
     pub fn bin(
         &mut self,

@@ -554,7 +554,7 @@ impl TerrainMemory {
     /// A cell the image's top edge cuts now (`cut`; empty: none) holds only the
     /// lower part of what stands there: it is the frame's alone, and it is not
     /// averaged into the next frame's view of that cell either. Nor is a cell over a
-    /// bend in the ground, now or when last seen ([`bent`]).
+    /// bend in the ground, now or when last seen (`bent`).
     ///
     /// Returns how many cells came from memory.
     pub fn fuse(&mut self, frame: &[Cell], expected: &[bool], cut: &[bool]) -> u32 {

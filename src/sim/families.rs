@@ -49,7 +49,7 @@ pub enum Family {
     /// A rock under the belly while one track climbs a straight ramp beside it: the
     /// body rolls, and its belly rests on the line between the tracks. Go or stop by
     /// a hand calculation of the belly's clearance over the rock
-    /// ([`belly_margin`]), at least 5 cm either way.
+    /// (`belly_margin`), at least 5 cm either way.
     BellyRockBesideRamp,
 }
 

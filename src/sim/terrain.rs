@@ -563,8 +563,8 @@ pub struct Terrain {
 }
 
 /// A terrain prepared for many height queries: each rough field's waves drawn once
-/// and tabulated on a [`ROUGH_GRID_M`] grid over the region a camera on the rover
-/// can see ([`ROUGH_TABLE_X`], [`ROUGH_TABLE_Y`]), a tile at a time as queries need
+/// and tabulated on a `ROUGH_GRID_M` grid over the region a camera on the rover
+/// can see (`ROUGH_TABLE_X`, `ROUGH_TABLE_Y`), a tile at a time as queries need
 /// it, interpolated bilinearly there (an error far below a millimetre for
 /// correlation lengths of centimetres and more) and summed directly elsewhere; each
 /// ramp's trigonometry computed once (the same values as per query, so the same
