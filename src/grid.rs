@@ -593,11 +593,11 @@ fn see_columns(
     *left -= newly;
 }
 
-/// The columns of a row (`p`) that can hold a point inside the grid. Every depth in range in the row lies in `[near_mm, p.max_mm]`,
-/// and a pixel's x (and y) moves monotonically with its depth, in floating point too
-/// (the same products and sums as [`index_row`]'s, each rounded monotonically): a
-/// column whose x (or y) lies on the same side outside the grid at both ends lies
-/// there at every depth between. Along the row, a pinhole's ray tables run
+/// The columns of a row (`p`) that can hold a point inside the grid. Every depth in
+/// range in the row lies in `[near_mm, p.max_mm]`, and a pixel's x (and y) moves
+/// monotonically with its depth, in floating point too (the same products and sums as
+/// [`index_row`]'s, each rounded monotonically): a column whose x (or y) lies on the
+/// same side outside the grid at both ends lies there at every depth between. Along the row, a pinhole's ray tables run
 /// monotonically too ([`ColumnRays::order`]), so the columns outside that way on the
 /// row's one side are a prefix, those on the other a suffix. Each end is found by
 /// walking from `guess`'s (the row before's: neighbouring rows' ends lie a few
@@ -666,8 +666,8 @@ fn partition_from(n: usize, guess: usize, pred: impl Fn(usize) -> bool) -> usize
 /// The branch-free half of binning one row: every pixel's voxel index (`u32::MAX`
 /// when out of range or outside the grid, and for every pixel outside the columns
 /// `span`, which [`grid_columns`] found can hold none inside) and, in `span`,
-/// position in voxel units. Returns the
-/// number of pixels in range and how many of them fall inside the grid. Written as
+/// position in voxel units. Returns how many of the span's pixels are in range and
+/// how many of them fall inside the grid. Written as
 /// plain indexed arithmetic so that it vectorises; compiled for several instruction
 /// sets and picked at run time (same results on each: Rust never fuses multiply-adds
 /// on its own). [`depths_in_range`] counted the pixels in range already; counted
