@@ -1586,6 +1586,52 @@ fn a_tall_mound_whose_top_the_image_s_top_edge_cuts_is_never_go() {
 }
 
 #[test]
+fn a_mound_the_top_edge_cuts_is_not_go_when_noise_lifts_the_cell_before_the_cut() {
+    // A Kinect v1 0.53 m high, rolled 5.4° and pitched 32.7°, over lumpy ground with
+    // stones (`sweep -- natural 200 3718 random 7` #173). The image's top edge cuts a
+    // 15.2 cm mound 2.06 m out in the right track: two inner strips climb 0.3, 1.2,
+    // 4.9 cm and 9-10 cm into the cut. Measured from the lowest ground over the
+    // wheelbase, 0.3 m before the mound, the climbs are gentle; the bend over the
+    // smooth ground before the front finds both strips. In the noisy frame a few of the
+    // cut's points, moved nearer by depth noise, made a voxel at 10.2 cm in one strip's
+    // last cell before the cut, whose top then stood as high as the cut cell's: that
+    // strip's front no longer rose where the view ends, and the frame was a go. The
+    // front is now read by its cells' upper surface (`crest`), not a voxel of a few
+    // points. The same mound 9 cm high is go.
+    let mut c = mounted(
+        [0.171_596_087, 0.067_683_920, 0.527_443_964],
+        [5.431_078_133, 32.727_821_012, 1.791_368_904],
+    );
+    c.camera.min_range_m = 0.468_472_547;
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.188_836_160_794_749_66,
+                seed: 4_892_485_967_719_931_593,
+            },
+            Element::stone(1.534_814, 0.599_559, 0.075_835, 0.046_085, StoneShape::Cap),
+            Element::stone(
+                1.073_263,
+                -0.603_757,
+                0.113_761,
+                0.067_738,
+                StoneShape::Mound,
+            ),
+            Element::stone(
+                2.057_750,
+                -0.498_449,
+                0.163_464,
+                height_m,
+                StoneShape::Mound,
+            ),
+        ]
+    };
+    let unknown = (Decision::Unknown, Side::Right, Some(HazardKind::Unknown));
+    go_low_not_tall(field, [0.09, 0.151_531], &c, 3_718_173, unknown);
+}
+
+#[test]
 fn a_ramp_s_top_beside_its_vertical_side_is_not_taken_for_a_slope_across_the_strip() {
     // A 320×240 camera 0.78 m high, rolled 5.7°, pitched 25.5° and yawed −8.2°, sees a
     // ramp under each track: 17.2° from 1.20 m on the left, 18.2° from 1.56 m on the

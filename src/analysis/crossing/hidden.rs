@@ -568,9 +568,13 @@ fn fronts<'c>(
 /// when its top stands [`BEND_RISE_M`] or more above that line carried to the cell's
 /// far edge (off the ground the strip was on), above the line where the front begins
 /// by more than the slope limit `tan_max` climbs from there to the cell's far edge
-/// (the gentlest the rise can be), and [`FRONT_RISING_M`] or more above the front's
-/// cells before the cut (still rising where the view ends: a stone seen whole, its
-/// top before the cut, is the step test's). That is the front of a rock, a wall or a
+/// (the gentlest the rise can be), and [`FRONT_RISING_M`] or more above the upper
+/// surface (`crest`) of the front's cells before the cut (still rising where the view
+/// ends: a stone seen whole, its top before the cut, is the step test's). Not their top
+/// voxels: a few of the cut's points that depth noise moved nearer made a voxel 10.2
+/// cm up in the last cell before the cut, as high as the cut cell's top, and a 15.2 cm
+/// mound the view ends on was a noisy go (`sweep -- natural 200 3718 random 7` #173;
+/// 6.5 cm clean). That is the front of a rock, a wall or a
 /// ramp too steep, cut by the image's top edge: a 15 cm rock on a smooth 15° ramp,
 /// seen rising 3-5 cm before the view ends, and a 19 cm mound on a 10° ramp, seen
 /// rising 8 cm over two cells and into the cut (10.7 cm from its foot, under a wheel
@@ -591,7 +595,7 @@ fn bends_up<'c>(
         let (last_x, _) = window.clone().next()?;
         let end = h - 1 - lead;
         let front_top = (end + 1..h)
-            .map(|ix| f.cells[s.cell(ix, iy)].top)
+            .map(|ix| f.cells[s.cell(ix, iy)].crest)
             .fold(f32::NEG_INFINITY, f32::max);
         let on_line = |x: f32| line.z(f64::from(x), 0.0) as f32;
         let near = s.x_centre(end) + 0.5 * s.voxel_m;
