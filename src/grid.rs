@@ -446,19 +446,29 @@ struct RowParams {
 }
 
 impl RowParams {
-    /// The row whose ray part is `row` (the projector's row table: rover frame, per
-    /// metre of depth) of a camera at `origin` (rover frame, metres), binned into
-    /// grid `s`, depths in `[min_mm, max_mm]`.
-    fn new(s: &GridSpec, origin: [f32; 3], row: [f32; 3], (min_mm, max_mm): (u16, u16)) -> Self {
+    /// What every row of a frame shares: a camera at `origin` (rover frame, metres),
+    /// binned into grid `s`, depths in `[min_mm, max_mm]`. Its ray part is zero until
+    /// [`RowParams::row`] sets a row's.
+    fn new(s: &GridSpec, origin: [f32; 3], (min_mm, max_mm): (u16, u16)) -> Self {
         let inv = 1.0 / s.voxel_m;
         RowParams {
-            r: row.map(|v| v * inv),
+            r: [0.0; 3],
             // The camera's position in voxel units relative to the grid's origin.
             t: [0, 1, 2].map(|k| (origin[k] - s.origin[k]) * inv),
             n: [s.nx as f32, s.ny as f32, s.nz as f32],
             strides: [(s.ny * s.nz) as i32, s.nz as i32],
             min_mm,
             max_mm,
+        }
+    }
+
+    /// These parameters for the row whose ray part is `row` (the projector's row
+    /// table: rover frame, per metre of depth) in grid `s`.
+    fn row(self, s: &GridSpec, row: [f32; 3]) -> Self {
+        let inv = 1.0 / s.voxel_m;
+        RowParams {
+            r: row.map(|v| v * inv),
+            ..self
         }
     }
 }
@@ -1010,13 +1020,14 @@ impl VoxelGrid {
         let mut columns_left = width;
         // The last row's columns that can hold a point in the grid.
         let mut guess = 0..width;
+        let frame = RowParams::new(&s, projector.origin(), (min_mm, max_mm));
         for (v, (row, pixels)) in projector
             .row_table()
             .iter()
             .zip(depth.chunks_exact(width))
             .enumerate()
         {
-            let p = RowParams::new(&s, projector.origin(), *row, (min_mm, max_mm));
+            let p = frame.row(&s, *row);
             let (r, t) = (p.r, p.t);
             // A row whose every ray runs forward and whose nearest point lies past the
             // corridor's far end (a voxel's margin for rounding) bins nothing: the
@@ -1324,9 +1335,9 @@ mod tests {
 
     #[test]
     fn the_columns_a_row_trims_hold_no_point_inside_the_grid() {
-        // Mounts pitched 0-45°, rolled, yawed and offset (behind the grid too), three depth rows per image row,
-        // all past the row's nearest depth: at it, at the far range limit, and drawn
-        // between them with no returns among them. Every pixel outside the row's span
+        // Mounts pitched 0-45°, rolled, yawed and offset (behind the grid too), three
+        // depth rows per image row, all past the row's nearest depth: at it, at the far
+        // range limit, and drawn between them with no returns among them. Every pixel outside the row's span
         // falls outside the grid, and the far rows of most mounts are trimmed.
         let mut state = 0x2545_f491_4f6c_dd1du64;
         let mut unit = move || {
@@ -1349,10 +1360,11 @@ mod tests {
             let cols = ColumnRays::new(&p, &s);
             assert!(cols.order.is_some(), "a pinhole's tables run monotonically");
             let (min_mm, max_mm) = (400, 4500);
+            let frame = RowParams::new(&s, p.origin(), (min_mm, max_mm));
             let mut rb = RowBuffers::default();
             rb.resize(w);
             for row in p.row_table() {
-                let params = RowParams::new(&s, p.origin(), *row, (min_mm, max_mm));
+                let params = frame.row(&s, *row);
                 let near = min_mm + (unit() * f64::from(max_mm - min_mm)) as u16;
                 let start = (unit() * w as f64) as usize;
                 let guess = start..start + (unit() * (w - start) as f64) as usize;
@@ -1392,7 +1404,7 @@ mod tests {
         (c.mount.pitch_deg, c.mount.x_m) = (0.0, -0.5);
         let p = Projector::new(&c, w, h);
         let s = GridSpec::from_config(&c);
-        let level = RowParams::new(&s, p.origin(), p.row_table()[h / 2], (400, 4500));
+        let level = RowParams::new(&s, p.origin(), (400, 4500)).row(&s, p.row_table()[h / 2]);
         assert_eq!(
             grid_columns(&ColumnRays::new(&p, &s), &level, 400, 0..0),
             0..w
@@ -1406,7 +1418,7 @@ mod tests {
         cols.order = monotonic(&cols.x)
             .zip(monotonic(&cols.y))
             .map(|(x, y)| [x, y]);
-        let far = RowParams::new(&s, p.origin(), p.row_table()[0], (400, 4500));
+        let far = RowParams::new(&s, p.origin(), (400, 4500)).row(&s, p.row_table()[0]);
         assert_eq!(grid_columns(&cols, &far, 2900, 5..9), 0..w);
     }
 

@@ -18,8 +18,9 @@
 //! - **Fail-safe**: no frame for `service.frame_timeout_ms` and an "unknown" verdict
 //!   goes out every `service.heartbeat_ms` until frames return; the watchdog pings
 //!   stop with the fresh verdicts. A camera that vanishes is reopened with backoff;
-//!   a link that fails is reopened with backoff ([`Resilient`](crate::link::Resilient)) while frames keep
-//!   being analysed. On shutdown a final stop verdict is sent and flushed.
+//!   a link that fails is reopened with backoff
+//!   ([`Resilient`](crate::link::Resilient)) while frames keep being analysed. On
+//!   shutdown a final stop verdict is sent and flushed.
 
 mod analysis;
 mod camera;
