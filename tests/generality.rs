@@ -1915,11 +1915,8 @@ fn ramps_and_descents_whose_toe_is_rounded_keep_their_verdicts_and_measures() {
     // the face after (`families::rounded`). The two planes still meet at the drawn
     // toe line, the paper's toe. Smooth one-track ramps, ramps out of view, half-plane
     // and one-track descents and two ramps, on random rigs, clean and noisy: the
-    // verdict and workcase as drawn, the toe within 1 cm more than a sharp toe's bar
-    // (the face fit takes some of the rounding's rise: 100 such scenes of `sweep --
-    // rounded 100 3702 random` read their toes a mean 0.26 cm and at most 1.6 cm
-    // early, against at most 0.5 cm with sharp toes) and the gradient within 0.5°
-    // more.
+    // verdict and workcase as drawn, the toe and gradient within a sharp toe's bars
+    // (the face is measured past the rounding).
     use rand::SeedableRng;
     use rover_terrain::sim::families::{self, Family};
     use rover_terrain::validate::compare;
@@ -1931,7 +1928,7 @@ fn ramps_and_descents_whose_toe_is_rounded_keep_their_verdicts_and_measures() {
         Family::OneTrackDescent,
         Family::TwoRamps,
     ];
-    let (mut fails, mut early) = (Vec::new(), 0);
+    let (mut fails, mut errors) = (Vec::new(), Vec::new());
     for i in 0..20u64 {
         let rig = families::Rig::random(&mut rng);
         let d = families::draw(&mut rng, smooth[i as usize % 5], rig);
@@ -1939,13 +1936,11 @@ fn ramps_and_descents_whose_toe_is_rounded_keep_their_verdicts_and_measures() {
         let c = &d.rig.config;
         let noises = [None, Some(4400 + i)];
         let views = analyse_views(d.terrain.elements.clone(), c, noises);
-        for ((noise, v), mut tol) in noises
+        for ((noise, v), tol) in noises
             .into_iter()
             .zip(&views)
             .zip([d.tolerance.0, d.tolerance.1])
         {
-            tol.distance_m += 0.01;
-            tol.gradient_deg += 0.5;
             let f = compare(&d.expect, &tol, v);
             if !f.is_empty() {
                 fails.push(format!(
@@ -1954,16 +1949,22 @@ fn ramps_and_descents_whose_toe_is_rounded_keep_their_verdicts_and_measures() {
                 ));
             }
             let measured = v.feature.and_then(|f| f.distance_m);
-            early += usize::from(
-                measured
-                    .zip(d.expect.distance_m)
-                    .is_some_and(|(m, w)| f64::from(m) < w),
-            );
+            if let Some((m, w)) = measured.zip(d.expect.distance_m) {
+                errors.push(f64::from(m) - w);
+            }
         }
     }
     assert!(fails.is_empty(), "{fails:#?}");
-    // The rounding's rise before the toe line pulls the toes early, more often than not.
-    assert!(early > 20, "{early} of 40 early");
+    let mean = errors.iter().sum::<f64>() / errors.len() as f64;
+    let worst = errors.iter().fold(0.0f64, |w, e| w.max(e.abs()));
+    // Measured past the rounding, the toes are not biased early: a mean of -0.05 cm
+    // and at most 0.5 cm off here (the fit of every cell read 100 such scenes of the
+    // sweep a mean 0.26 cm and at most 1.6 cm early).
+    assert!(errors.len() >= 30, "{} toes measured", errors.len());
+    assert!(
+        mean.abs() < 0.0015 && worst < 0.01,
+        "mean {mean}, worst {worst}"
+    );
 }
 
 #[test]

@@ -68,7 +68,12 @@ const TOE_BAND_CELLS: usize = 3;
 /// A fitted face: its plane and how much of it the fit saw.
 #[derive(Debug, Clone, Copy)]
 struct Face {
+    /// The face's plane, its toe line and gradient: the fit's, or past a rounded toe
+    /// the plane of the cells beyond the rounding ([`past_rounding`]).
     plane: Plane,
+    /// The least-squares plane of every cell the fit took, for comparing fits
+    /// ([`one_face_or_nearer`]).
+    fit: Plane,
     /// How far past the toe line the farthest cell of the fit lies, along the
     /// gradient, metres.
     run_m: f64,
@@ -93,8 +98,9 @@ struct Face {
 const VIEW_END_CELLS: usize = 2;
 
 impl Face {
-    /// The face measured over the cells `sel` takes.
-    fn measured(f: &Frame, g: &Ground, sel: &Selection, plane: Plane) -> Face {
+    /// The face of plane `plane` measured over the cells `sel` takes, `fit` their
+    /// least-squares plane.
+    fn measured(f: &Frame, g: &Ground, sel: &Selection, plane: Plane, fit: Plane) -> Face {
         let s = f.spec;
         let slope = plane.a.hypot(plane.b).max(1e-9);
         let mut run_m = 0.0f64;
@@ -118,10 +124,20 @@ impl Face {
         }
         Face {
             plane,
+            fit,
             run_m,
             spread_m: spread.sigma().unwrap_or(SPREAD_BINS as f64 / 1000.0),
             to_view_end,
             in_shadow: shadow && !horizon,
+        }
+    }
+
+    /// This face measured past a rounded toe ([`past_rounding`]; `sel` the cells it
+    /// was fitted to, `dir` its way), or as it is where the toe shows no rounding.
+    fn past_rounding(self, f: &Frame, g: &Ground, sel: &mut Selection, dir: Dir) -> Face {
+        match past_rounding(f, g, sel, &self.fit, dir) {
+            Some(plane) => Face::measured(f, g, sel, plane, self.fit),
+            None => self,
         }
     }
 }
@@ -245,7 +261,140 @@ fn fit_face(
             break;
         }
     }
-    plane.map(|p| Face::measured(f, g, sel, p))
+    plane.map(|p| Face::measured(f, g, sel, p, p))
+}
+
+/// How far past the toe line, along the gradient, a rounded toe may bend the ground
+/// off the face's plane, metres: half the longest rounding [`past_rounding`] undoes
+/// (0.4 m across the toe line).
+const ROUNDING_REACH_M: f64 = 0.2;
+/// Least cells past [`ROUNDING_REACH_M`] that [`past_rounding`] fits a plane to.
+const ROUNDING_MIN_CELLS: usize = 6;
+/// Fits [`past_rounding`] makes of the cells past [`ROUNDING_REACH_M`], each leaving
+/// out those off the last by three standard deviations: the second drops a cap's first
+/// plateau cells. (Four read a capped descent's toe 2.8 mm nearer its drawn one,
+/// `sweep -- rounded 100 3725 random` #69, and cost 25 µs more on `diagonal_full.png`.)
+const ROUNDING_PASSES: usize = 2;
+/// Spread of those cells about their plane (RMS, metres) over which [`past_rounding`]
+/// leaves the fit alone: rough ground's bumps (centimetres) hide a rounding of a
+/// centimetre or two, and its toe is read within rough ground's 4 cm anyway.
+const ROUNDING_SMOOTH_M: f64 = 0.004;
+/// Least lift of the cells within [`ROUNDING_REACH_M`] of the toe line over the plane
+/// of those past it that [`past_rounding`] takes for a rounding, metres, and how many
+/// standard errors of their mean it must also pass.
+const ROUNDING_MIN_LIFT_M: f64 = 0.001;
+/// See [`ROUNDING_MIN_LIFT_M`].
+const ROUNDING_LIFT_SES: f64 = 4.0;
+
+/// The face's plane past a rounded toe, or `None` where the toe shows no rounding.
+///
+/// Real toes are rounded: across the toe line the ground bends from the level to the
+/// face over some length, the two planes still meeting at the toe line. The fit takes
+/// the bend's first rise (or fall) with the face, as it lies within the residual
+/// tolerance, and over the bend's near half that ground stands off the face's plane
+/// its way (by up to tan(gradient) · length / 8 at the toe line, for a parabolic
+/// bend): the fitted plane reads the toe early and the face shallow (by up to 2.8 cm
+/// and 1.2° for roundings up to 40 cm long, where the clean bars are 1 cm and 0.5°).
+///
+/// So the face is fitted again to the taken cells more than [`ROUNDING_REACH_M`] past
+/// the fit's toe line (`fit`), weighted by their points, and refitted without those
+/// off it by three standard deviations (a cap's first plateau cells, which the fit's
+/// 6 mm floor keeps; [`ROUNDING_PASSES`]); if the cells nearer the toe
+/// line stand off that plane the face's way (`dir`), on average, by over
+/// [`ROUNDING_MIN_LIFT_M`] and [`ROUNDING_LIFT_SES`] standard errors (the far cells'
+/// spread over the near ones' count), the toe is rounded and the far cells' plane is
+/// the face's. A sharp toe's near cells lie on the far plane (its toe read as
+/// before). Only for a fit that slopes the face's way (a plane [`measures`] takes),
+/// on smooth ground (the far cells within [`ROUNDING_SMOOTH_M`] RMS),
+/// with [`ROUNDING_MIN_CELLS`] far cells reaching twice [`ROUNDING_REACH_M`] past the
+/// toe line, and a far plane that still slopes the face's way by [`MIN_FACE_DEG`]. The
+/// far plane is carried back to the toe line no farther than the length it is fitted
+/// over: fitted over a shorter one, millimetres of a bevelled band's edge strip
+/// tilted it 0.6° (`validate`'s bevelled one-track ramp on a random rig).
+fn past_rounding(
+    f: &Frame,
+    g: &Ground,
+    sel: &mut Selection,
+    fit: &Plane,
+    dir: Dir,
+) -> Option<Plane> {
+    let sign = if dir == Dir::Up { 1.0 } else { -1.0 };
+    if fit.a * sign <= 0.0 || fit.gradient_deg() < MIN_FACE_DEG {
+        return None; // no slope the face's way: measured as a step, from the onsets
+    }
+    let slope = fit.a.hypot(fit.b);
+    // How far past the fit's toe line a cell lies, along the gradient, metres.
+    let past = |cell: &Cell| sign * fit.z(f64::from(cell.x), f64::from(cell.y)) / slope;
+    // The taken cells past the reach and within it, in cell order (capacity: the
+    // cell count; never reallocates).
+    let Selection {
+        eligible,
+        on,
+        far,
+        near,
+        ..
+    } = sel;
+    far.clear();
+    near.clear();
+    for &c in eligible.iter().filter(|&&c| on[c as usize]) {
+        if past(&f.cells[c as usize]) > ROUNDING_REACH_M {
+            far.push(c);
+        } else {
+            near.push(c);
+        }
+    }
+    let cell_of = |&c: &u32| (c as usize, &f.cells[c as usize]);
+    // The far plane, refitted to the far cells within three standard deviations of
+    // the last one (unless none leaves); with the far cells' RMS about it, metres.
+    let (mut plane, mut rms, mut last_n) = (None::<(Plane, f64)>, 0.0, 0);
+    for _ in 0..ROUNDING_PASSES {
+        let kept = plane;
+        let keep = move |&(c, cell): &(usize, &Cell)| {
+            kept.is_none_or(|(q, tol)| g.off(c, cell, &q).abs() <= tol)
+        };
+        let cells = || far.iter().map(cell_of).filter(keep);
+        let mut sums = PlaneFit::default();
+        let (mut n, mut reach) = (0, 0.0f64);
+        for (c, cell) in cells() {
+            sums.add(
+                f64::from(cell.x),
+                f64::from(cell.y),
+                f64::from(g.z[c]),
+                f64::from(cell.n),
+            );
+            n += 1;
+            reach = reach.max(past(cell));
+        }
+        if n < ROUNDING_MIN_CELLS || reach < 2.0 * ROUNDING_REACH_M {
+            return None;
+        }
+        if n == last_n {
+            break;
+        }
+        last_n = n;
+        let q = sums
+            .solve()
+            .filter(|q| q.a * sign > 0.0 && q.gradient_deg() >= MIN_FACE_DEG)?;
+        let (mut sq, mut spread) = (0.0, Spread::default());
+        for (c, cell) in cells() {
+            let r = g.off(c, cell, &q);
+            sq += f64::from(cell.n) * r * r;
+            spread.add(r);
+        }
+        rms = (sq / sums.weight()).sqrt();
+        plane = Some((q, 3.0 * spread.sigma().map_or(rms, |m| m.min(rms))));
+    }
+    let (p, _) = plane?;
+    let lift = near
+        .iter()
+        .map(cell_of)
+        .map(|(c, cell)| sign * g.off(c, cell, &p))
+        .sum::<f64>()
+        / near.len().max(1) as f64;
+    let rounded = rms <= ROUNDING_SMOOTH_M
+        && !near.is_empty()
+        && lift > ROUNDING_MIN_LIFT_M.max(ROUNDING_LIFT_SES * rms / (near.len() as f64).sqrt());
+    rounded.then_some(p)
 }
 
 /// One fit of [`fit_face`]: the plane through the cells `sel` takes and the
@@ -401,6 +550,8 @@ impl Scratch {
                 off_strip: vec![false; spec.ny],
                 strip_sums: vec![(0.0, 0); spec.ny],
                 means: Vec::with_capacity(spec.ny),
+                far: Vec::with_capacity(cells),
+                near: Vec::with_capacity(cells),
             },
             z: vec![0.0; cells],
             usable: vec![false; cells],
@@ -423,6 +574,11 @@ struct Selection {
     strip_sums: Vec<(f64, u32)>,
     /// The strips' mean residuals, for their median (capacity: the strip count).
     means: Vec<f32>,
+    /// The taken cells past a rounded toe's reach, and within it
+    /// ([`past_rounding`]; capacity: the cell count).
+    far: Vec<u32>,
+    /// See `far`.
+    near: Vec<u32>,
 }
 
 impl Selection {
@@ -848,7 +1004,8 @@ fn affected_tracks(f: &Frame, onset: &[Option<Onset>]) -> Option<Affected> {
 /// Step 3: the face's plane. Both tracks rise (or fall): one face across both, or a
 /// different face under each? Fit each alone and both together; if the one-track
 /// faces depart from the joint one ([`same_face`]), the nearer one is the feature.
-/// Returns the tracks the face affects and its plane (already fitted, reused).
+/// Returns the tracks the face affects and its face, measured past a rounded toe
+/// (only the returned face is: the one-track fits are compared by their own planes).
 fn one_face_or_nearer(
     f: &Frame,
     g: &Ground,
@@ -856,26 +1013,30 @@ fn one_face_or_nearer(
     sel: &mut Selection,
     mut a: Affected,
 ) -> (Affected, Option<Face>) {
-    let both = fit_face(f, g, onset, sel, a.dir, a.left, a.right);
+    let both = fit_face(f, g, onset, sel, a.dir, a.left, a.right)
+        .map(|face| face.past_rounding(f, g, sel, a.dir));
     let Some(both) = both.filter(|_| a.left && a.right) else {
         return (a, both);
     };
     let tc = f.cfg.rover.track_centre_m();
     let mut one = |left: bool| {
         let face = fit_face(f, g, onset, sel, a.dir, left, !left)?;
-        let (own, n) = residuals(f, g, sel, &face.plane);
-        let (joint, _) = residuals(f, g, sel, &both.plane);
+        let (own, n) = residuals(f, g, sel, &face.fit);
+        let (joint, _) = residuals(f, g, sel, &both.fit);
         Some((face, own, joint, n))
     };
     if let (Some(l), Some(r)) = (one(true), one(false)) {
         if !same_face(l.1 + r.1, l.2 + r.2, l.3 + r.3) {
-            return if l.0.plane.toe_x(tc) <= r.0.plane.toe_x(-tc) {
+            // The selection holds the right track's fit, the last made: the left
+            // track's face is fitted again to measure it over its own cells.
+            let nearer = if l.0.plane.toe_x(tc) <= r.0.plane.toe_x(-tc) {
                 a.right = false;
-                (a, Some(l.0))
+                fit_face(f, g, onset, sel, a.dir, true, false)
             } else {
                 a.left = false;
-                (a, Some(r.0))
+                Some(r.0)
             };
+            return (a, nearer.map(|face| face.past_rounding(f, g, sel, a.dir)));
         }
     }
     (a, Some(both))
@@ -1014,7 +1175,8 @@ mod tests {
             z: &sc.z,
             usable: &sc.usable,
         };
-        fit_face(f, &g, &sc.onset, &mut sc.selection, Dir::Up, true, true).unwrap()
+        let face = fit_face(f, &g, &sc.onset, &mut sc.selection, Dir::Up, true, true).unwrap();
+        face.past_rounding(f, &g, &mut sc.selection, Dir::Up)
     }
 
     const LEFT_TRACK: Extent = Extent::Band {
@@ -1140,6 +1302,75 @@ mod tests {
         assert!(face.spread_m < 0.004 && face.run_m > 0.5, "{face:?}");
         assert!((plane.toe_x(0.0) - 1.2).abs() < 0.01, "{plane:?}");
         assert!(((plane.b / plane.a).atan().to_degrees() - 20.0).abs() < 0.5);
+    }
+
+    #[test]
+    fn a_rounded_toe_is_measured_past_its_rounding() {
+        // An 18° ramp from 1.2 m and a -12° descent from 1.1 m, their toes sharp or
+        // rounded over 0.35 m: a parabola from 0.175 m before the toe line to 0.175 m
+        // past it, which stands tan(gradient) · 0.35 / 8 off the face at the toe line
+        // (1.4 and 0.9 cm). The plane of every cell the fit takes reads a rounded toe
+        // 3.8 mm early and the face 0.04-0.08° shallow; the face's plane, fitted past
+        // the rounding, reads both within 1 mm and 0.02°. A sharp toe's face is the
+        // fit's.
+        for (toe, gradient) in [(1.2, 18.0), (1.1, -12.0)] {
+            for round in [None, Some(0.35)] {
+                let ramp = Element::ramp(toe, 0.0, gradient, 0.0, Extent::Full).toe_rounded(round);
+                let p = analysed(vec![ramp]);
+                let f = p.analyzer().frame(p.grid());
+                let mut sc = prepared(&f);
+                let g = Ground {
+                    z: &sc.z,
+                    usable: &sc.usable,
+                };
+                let dir = if gradient > 0.0 { Dir::Up } else { Dir::Down };
+                let face = fit_face(&f, &g, &sc.onset, &mut sc.selection, dir, true, true)
+                    .unwrap()
+                    .past_rounding(&f, &g, &mut sc.selection, dir);
+                let (plane, fit) = (face.plane, face.fit);
+                let case = format!("{gradient}° rounded {round:?}: {plane:?}, fit {fit:?}");
+                assert!((plane.toe_x(0.0) - toe).abs() < 0.001, "{case}");
+                assert!(
+                    (plane.gradient_deg() - gradient.abs()).abs() < 0.02,
+                    "{case}"
+                );
+                if round.is_some() {
+                    assert!(fit.toe_x(0.0) < toe - 0.003, "{case}");
+                    assert!(fit.gradient_deg() < gradient.abs() - 0.03, "{case}");
+                } else {
+                    assert_eq!(plane, fit, "{case}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_rounded_toe_seen_over_a_short_face_is_measured_by_the_fit() {
+        // The same ramp from 2.65 m: the corridor ends 0.35 m past its toe line, under
+        // twice the rounding's reach, too short a face to carry a plane back from.
+        let ramp = Element::ramp(2.65, 0.0, 18.0, 0.0, Extent::Full).toe_rounded(Some(0.35));
+        let p = analysed(vec![ramp]);
+        let f = p.analyzer().frame(p.grid());
+        let face = fitted(&f);
+        assert_eq!(face.plane, face.fit, "{face:?}");
+        assert!(face.run_m < 0.4, "{face:?}");
+    }
+
+    #[test]
+    fn a_rounded_toe_on_rough_ground_is_measured_by_the_fit() {
+        // Rough ground's bumps (±2.5 cm) hide a rounding's centimetre: the face is
+        // the fit's, whatever the rounding.
+        let rough = Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m: 0.15,
+            seed: 7,
+        };
+        let ramp = Element::ramp(1.2, 0.0, 18.0, 0.0, Extent::Full).toe_rounded(Some(0.35));
+        let p = analysed(vec![rough, ramp]);
+        let f = p.analyzer().frame(p.grid());
+        let face = fitted(&f);
+        assert_eq!(face.plane, face.fit, "{face:?}");
+        assert!((face.plane.toe_x(0.0) - 1.2).abs() < 0.04, "{face:?}");
     }
 
     #[test]
