@@ -1958,7 +1958,7 @@ fn ramps_and_descents_whose_toe_is_rounded_keep_their_verdicts_and_measures() {
     let mean = errors.iter().sum::<f64>() / errors.len() as f64;
     let worst = errors.iter().fold(0.0f64, |w, e| w.max(e.abs()));
     // Measured past the rounding, the toes are not biased early: a mean of -0.05 cm
-    // and at most 0.5 cm off here (the fit of every cell read 100 such scenes of the
+    // and at most 0.27 cm off here (the fit of every cell read 100 such scenes of the
     // sweep a mean 0.26 cm and at most 1.6 cm early).
     assert!(errors.len() >= 30, "{} toes measured", errors.len());
     assert!(
