@@ -345,46 +345,29 @@ fn past_rounding(
     }
     let cell_of = |&c: &u32| (c as usize, &f.cells[c as usize]);
     // The far plane, refitted to the far cells within three standard deviations of
-    // the last one (unless none leaves); with the far cells' RMS about it, metres.
-    let (mut plane, mut rms, mut last_n) = (None::<(Plane, f64)>, 0.0, 0);
+    // the last one (unless none leaves).
+    let mut last: Option<CellsFit> = None;
     for _ in 0..ROUNDING_PASSES {
-        let kept = plane;
+        let kept = last.map(|fit| (fit.plane, 3.0 * fit.sigma));
         let keep = move |&(c, cell): &(usize, &Cell)| {
             kept.is_none_or(|(q, tol)| g.off(c, cell, &q).abs() <= tol)
         };
         let cells = || far.iter().map(cell_of).filter(keep);
-        let mut sums = PlaneFit::default();
-        let (mut n, mut reach) = (0, 0.0f64);
-        for (c, cell) in cells() {
-            sums.add(
-                f64::from(cell.x),
-                f64::from(cell.y),
-                f64::from(g.z[c]),
-                f64::from(cell.n),
-            );
-            n += 1;
-            reach = reach.max(past(cell));
-        }
-        if n < ROUNDING_MIN_CELLS || reach < 2.0 * ROUNDING_REACH_M {
+        let fit = fit_cells(g, cells, |cell| f64::from(cell.n))?;
+        let reaches = cells().any(|(_, cell)| past(cell) >= 2.0 * ROUNDING_REACH_M);
+        if fit.n < ROUNDING_MIN_CELLS || !reaches {
             return None;
         }
-        if n == last_n {
+        if last.is_some_and(|last| last.n == fit.n) {
             break;
         }
-        last_n = n;
-        let q = sums
-            .solve()
-            .filter(|q| q.a * sign > 0.0 && q.gradient_deg() >= MIN_FACE_DEG)?;
-        let (mut sq, mut spread) = (0.0, Spread::default());
-        for (c, cell) in cells() {
-            let r = g.off(c, cell, &q);
-            sq += f64::from(cell.n) * r * r;
-            spread.add(r);
+        let q = fit.plane;
+        if q.a * sign <= 0.0 || q.gradient_deg() < MIN_FACE_DEG {
+            return None;
         }
-        rms = (sq / sums.weight()).sqrt();
-        plane = Some((q, 3.0 * spread.sigma().map_or(rms, |m| m.min(rms))));
+        last = Some(fit);
     }
-    let (p, _) = plane?;
+    let CellsFit { plane: p, rms, .. } = last?;
     let lift = near
         .iter()
         .map(cell_of)
@@ -422,27 +405,59 @@ fn weighted_plane(
             f64::from(cell.n)
         }
     };
-    let used = || sel.taken(f).map(|(c, cell)| (cell, f64::from(g.z[c])));
-    let mut fit = PlaneFit::default();
+    let fit = fit_cells(g, || sel.taken(f), weight)?;
+    Some((fit.plane, MIN_TOLERANCE_M.max(3.0 * fit.sigma)))
+}
+
+/// A plane fitted to cells' ground heights ([`fit_cells`]) and how far they lie off it.
+#[derive(Debug, Clone, Copy)]
+struct CellsFit {
+    plane: Plane,
+    /// How many cells it was fitted to.
+    n: usize,
+    /// The residuals' weighted RMS, metres.
+    rms: f64,
+    /// One standard deviation of the residuals, metres: the smaller of the RMS's and
+    /// the median absolute residual's estimate (a strip of cells off the face, such as
+    /// a wall's points along a band edge or a plateau, inflates the RMS).
+    sigma: f64,
+}
+
+/// The weighted least-squares plane through the ground heights (`g.z`) of `cells`
+/// (cell index and cell), each weighing `weight`, and the spread of the heights about
+/// it; `None` with under three cells or a degenerate fit.
+fn fit_cells<'c, I>(
+    g: &Ground,
+    cells: impl Fn() -> I,
+    weight: impl Fn(&Cell) -> f64,
+) -> Option<CellsFit>
+where
+    I: Iterator<Item = (usize, &'c Cell)>,
+{
+    let mut sums = PlaneFit::default();
     let mut n = 0usize;
-    for (cell, z) in used() {
-        fit.add(f64::from(cell.x), f64::from(cell.y), z, weight(cell));
+    for (c, cell) in cells() {
+        let (x, y) = (f64::from(cell.x), f64::from(cell.y));
+        sums.add(x, y, f64::from(g.z[c]), weight(cell));
         n += 1;
     }
     if n < 3 {
         return None;
     }
-    let p = fit.solve()?;
-    let mut sq = 0.0;
-    let mut spread = Spread::default();
-    for (cell, z) in used() {
-        let r = z - p.z(f64::from(cell.x), f64::from(cell.y));
+    let plane = sums.solve()?;
+    let (mut sq, mut spread) = (0.0, Spread::default());
+    for (c, cell) in cells() {
+        let r = g.off(c, cell, &plane);
         sq += weight(cell) * r * r;
         spread.add(r);
     }
-    let rms = (sq / fit.weight()).sqrt();
-    let sigma = spread.sigma().map_or(rms, |m| m.min(rms));
-    Some((p, MIN_TOLERANCE_M.max(3.0 * sigma)))
+    let rms = (sq / sums.weight()).sqrt();
+    Some(CellsFit {
+        plane,
+        n,
+        rms,
+        sigma: spread.sigma().map_or(rms, |m| m.min(rms)),
+    })
 }
 
 /// A histogram of absolute residuals in millimetre bins, for their median without
