@@ -17,6 +17,8 @@ fn main() {
     let seed: u64 = arg(2).and_then(|s| s.parse().ok()).unwrap_or(21);
     let random = arg(3) == Some("random");
     let family: Option<usize> = arg(4).and_then(|s| s.parse().ok());
+    // One scene, or every scene (`all`), one line each.
+    let all = arg(5) == Some("all");
     let want: usize = arg(5).and_then(|s| s.parse().ok()).unwrap_or(0);
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     for i in 0..n {
@@ -30,7 +32,7 @@ fn main() {
             None => families::Family::ALL[i % families::Family::ALL.len()],
         };
         let d = families::draw(&mut rng, fam, rig);
-        if i != want {
+        if i != want && !all {
             continue;
         }
         let config = d.rig.config.clone();
@@ -52,38 +54,34 @@ fn main() {
             .cloned()
         else {
             println!("scene {i} has no ramp: {:?}", d.terrain.elements);
-            return;
+            continue;
         };
-        println!("measured: {:?}", v.feature);
-        println!("drawn:    toe {toe_x_m:.4} m, gradient {gradient_deg:.2}°");
+        if !all {
+            println!("measured: {:?}", v.feature);
+            println!("drawn:    toe {toe_x_m:.4} m, gradient {gradient_deg:.2}°");
+        }
         let far = f64::from(v.seen_to_m.left.min(v.seen_to_m.right));
-        let (inner, outer) = (config.rover.belly_half_width_m, config.rover.track_outer_m);
-        // Least squares z = a·x + c over a 1 cm lattice of the tracks, toe to far.
-        let field = d.terrain.field();
-        let (mut sx, mut sz, mut sxx, mut sxz, mut m) = (0.0, 0.0, 0.0, 0.0, 0.0);
         let (down, near) = (gradient_deg < 0.0, toe_x_m.max(0.0));
-        let mut x = near;
-        while x < far {
-            let mut y = inner;
-            while y < outer {
-                for y in [y, -y] {
-                    let z = field.height(x, y);
-                    (sx, sz, sxx, sxz, m) = (sx + x, sz + z, sxx + x * x, sxz + x * z, m + 1.0);
-                }
-                y += 0.01;
-            }
-            x += 0.01;
+        let Some((surface_toe, surface_deg)) =
+            families::surface_toe(&d.terrain, &config, near, far)
+        else {
+            println!("scene {i}: no face seen past the toe (seen to {far:.2} m)");
+            continue;
+        };
+        if all {
+            // scene, measured toe and gradient (or -), surface's, drawn.
+            let measured = v.feature.and_then(|f| f.distance_m.zip(f.gradient_deg));
+            let (mt, mg) = match measured {
+                Some((t, g)) => (format!("{t:.4}"), format!("{g:.2}")),
+                None => ("-".into(), "-".into()),
+            };
+            println!(
+                "{i} {mt} {mg} {surface_toe:.4} {surface_deg:.2} {toe_x_m:.4} {gradient_deg:.2}"
+            );
+            continue;
         }
-        if m < 3.0 {
-            println!("no face seen past the toe (seen to {far:.2} m)");
-            return;
-        }
-        let a = (m * sxz - sx * sz) / (m * sxx - sx * sx);
-        let c = (sz - a * sx) / m;
         println!(
-            "surface:  toe {:.4} m, gradient {:.2}° (plane of the rendered {} from {near:.2} to {far:.2} m)",
-            -c / a,
-            a.atan().to_degrees(),
+            "surface:  toe {surface_toe:.4} m, gradient {surface_deg:.2}° (plane of the rendered {} from {near:.2} to {far:.2} m)",
             if down { "descent" } else { "ramp" },
         );
     }

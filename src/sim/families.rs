@@ -351,6 +351,43 @@ pub fn least_incidence_deg(terrain: &Terrain, config: &Config) -> f64 {
     least
 }
 
+/// The plane of the rendered surface itself under a straight full-width ramp or
+/// descent: the least-squares line `z = a·x + c` through `terrain`'s heights on a
+/// 1 cm lattice over both wheel tracks (|y| from the belly's edge to the track's outer
+/// edge), from `near` to `far` metres out. Returns where it meets the ground (z = 0,
+/// metres out) and its gradient (degrees, negative downhill); `None` when the span
+/// holds no lattice point or the line is level.
+///
+/// A hand calculation on the drawn terrain, no sensor: on rough ground the surface is
+/// not the drawn ramp (bumps 10-20 cm long move the plane of a metre of face by
+/// centimetres), and no fit to what the camera sees can come nearer the drawn ramp
+/// than the surface it sees. Tests and `examples/surface_fit.rs` measure the analysis
+/// against this plane as well as against the drawn one.
+pub fn surface_toe(terrain: &Terrain, config: &Config, near: f64, far: f64) -> Option<(f64, f64)> {
+    let (inner, outer) = (config.rover.belly_half_width_m, config.rover.track_outer_m);
+    let field = terrain.field();
+    let (mut sx, mut sz, mut sxx, mut sxz, mut m) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    let steps_x = ((far - near) / 0.01).floor().max(-1.0) as i64;
+    let steps_y = ((outer - inner) / 0.01).ceil() as i64;
+    for i in 0..=steps_x {
+        let x = near + i as f64 * 0.01;
+        for j in 0..steps_y {
+            let y = inner + j as f64 * 0.01;
+            for y in [y, -y] {
+                let z = field.height(x, y);
+                (sx, sz, sxx, sxz, m) = (sx + x, sz + z, sxx + x * x, sxz + x * z, m + 1.0);
+            }
+        }
+    }
+    let det = m * sxx - sx * sx;
+    if m < 3.0 || det.abs() < 1e-12 {
+        return None;
+    }
+    let a = (m * sxz - sx * sz) / det;
+    let c = (sz - a * sx) / m;
+    (a.abs() > 1e-9).then(|| (-c / a, a.atan().to_degrees()))
+}
+
 /// Where a random rig's one frame can judge an edge on both tracks, metres: from the
 /// [`footprint`]'s near end (not nearer than 0.9 m) to 0.15 m before its far end (not
 /// past 2.4 m). A hazard past the view is not one frame's to judge; one below the
