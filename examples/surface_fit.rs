@@ -4,7 +4,9 @@
 //! over the part of the face the verdict says is seen, in both wheel tracks. On rough
 //! ground the drawn ramp is not what the ground is: bumps 15-20 cm long move the
 //! surface's own plane by centimetres, which no plane fit can recover.
-//! `cargo run --release --example surface_fit -- 30 21 default 5 5`.
+//! `cargo run --release --example surface_fit -- 30 21 default 5 5`. With `all` for
+//! the scene (`-- 200 4001 random 5 all`), every scene with a ramp, one line each:
+//! scene, measured toe (m) and gradient (°) or `-`, the surface's, the drawn ramp's.
 
 use rand::SeedableRng;
 use rover_terrain::sim::{self, families, Element};

@@ -2004,12 +2004,12 @@ fn rough_ramps_and_descents_are_measured_near_the_surface_the_camera_sees() {
     let rms = |e: &[f64]| (e.iter().map(|e| e * e).sum::<f64>() / e.len() as f64).sqrt();
     let worst = |e: &[f64]| e.iter().fold(0.0f64, |w, e| w.max(e.abs()));
     assert!(toe.len() >= 25, "{} faces measured", toe.len());
-    // Measured here: 0.84 cm RMS (worst 2.1 cm) and 0.38° RMS (worst 1.2°) off the
-    // surface's plane. With every cell weighed by its points, as before the face fit
-    // weighed rough ground's cells by their heights' variance (`cell_weight`), the
-    // toes were as near (0.85 cm, worst 1.8 cm) but the gradients 0.46° RMS and up to
-    // 2.1° off: the nearest cells, seen with the most points, tilted the plane by
-    // their few bumps.
+    // Measured here: 0.85 cm RMS (worst 1.8 cm) and 0.46° RMS (worst 2.1°) off the
+    // surface's plane. Weighing rough ground's cells alike (by their heights'
+    // variance) took the gradients to 0.38° RMS (worst 1.2°) here, but a steep rough
+    // ramp under one track, cut by the view's end, then read 14.7° for 34.3° and went
+    // (`a_steep_rough_ramp_the_view_ends_on_is_never_go_and_most_climbable_ones_are`
+    // #67): not kept.
     assert!(
         rms(&toe) < 0.012 && worst(&toe) < 0.03,
         "toe off the surface's: RMS {:.4} m, worst {:.4} m",
@@ -2017,7 +2017,7 @@ fn rough_ramps_and_descents_are_measured_near_the_surface_the_camera_sees() {
         worst(&toe)
     );
     assert!(
-        rms(&gradient) < 0.42 && worst(&gradient) < 1.6,
+        rms(&gradient) < 0.6 && worst(&gradient) < 2.5,
         "gradient off the surface's: RMS {:.2}°, worst {:.2}°",
         rms(&gradient),
         worst(&gradient)

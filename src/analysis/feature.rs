@@ -224,20 +224,10 @@ fn fit_face(
         }
     }
     let mut plane: Option<Plane> = None;
-    // How rough the ground before the face is, from the first plane's toe line on.
-    let mut ground_m: Option<f64> = None;
     for iteration in 0..10 {
-        let Some((p, tol)) = weighted_plane(f, g, sel, ground_m) else {
+        let Some((p, tol)) = weighted_plane(f, g, sel, iteration) else {
             break;
         };
-        if iteration == 0 {
-            let a = Affected {
-                dir,
-                left: use_left,
-                right: use_right,
-            };
-            ground_m = Some(ground_spread(f, g, onset, a, &p).unwrap_or(0.0));
-        }
         if iteration >= 1 {
             sel.reject_strips(f, g, &p);
         }
@@ -394,13 +384,11 @@ fn past_rounding(
 /// tolerance about it that keeps a cell on the face (metres), or `None` with under
 /// three cells or a degenerate fit.
 ///
-/// Cells weigh alike in the first fit (`ground_m` `None`): a cell whose points are
-/// mostly a face turned to the camera (a trench's wall along the band's edge) has
-/// several times more, and would steer the first plane so far that the residuals
-/// could not tell it apart. Once judged by an unweighted plane, such cells are off it
-/// and dropped. Later fits weigh each cell by [`cell_weight`] on ground whose heights
-/// spread by `ground_m` before the face ([`ground_spread`], from the first plane's toe
-/// line): by its points on smooth ground, about alike on rough. The tolerance is three standard deviations of the
+/// Cells weigh by their points, except in the first fit (`iteration` 0): a cell whose
+/// points are mostly a face turned to the camera (a trench's wall along the band's
+/// edge) has several times more, and would steer the first plane so far that the
+/// residuals could not tell it apart. Once judged by an unweighted plane, such cells
+/// are off it and dropped. The tolerance is three standard deviations of the
 /// residuals, the smaller of the RMS's and the median's estimate (a strip of cells off
 /// the face, such as a wall's points along a band edge or a plateau, inflates the RMS
 /// and would keep itself in), and at least [`MIN_TOLERANCE_M`].
@@ -408,35 +396,18 @@ fn weighted_plane(
     f: &Frame,
     g: &Ground,
     sel: &Selection,
-    ground_m: Option<f64>,
+    iteration: usize,
 ) -> Option<(Plane, f64)> {
-    let weight = |cell: &Cell| match ground_m {
-        None => 1.0,
-        Some(ground) => cell_weight(cell.n, ground),
+    let weight = |cell: &Cell| {
+        if iteration == 0 {
+            1.0
+        } else {
+            f64::from(cell.n)
+        }
     };
     let fit = fit_cells(g, || sel.taken(f), weight)?;
     Some((fit.plane, MIN_TOLERANCE_M.max(3.0 * fit.sigma)))
 }
-
-/// How much a cell of `n` points weighs in the face fit on ground whose heights
-/// spread by `spread_m` (metres, one standard deviation; [`ground_spread`]): the
-/// inverse variance of its height, `1 / (terrain² + POINT_NOISE_M² / n)`, scaled by
-/// POINT_NOISE_M². `terrain` is the spread past the cells' own noise
-/// ([`FACE_NOISE_M`]): on smooth ground it is nil and a cell weighs its points; on
-/// rough ground the ground's own bumps, not the sensor, set how far a cell lies off
-/// the face, so every cell weighs about alike, and the nearest cells, seen with the
-/// most points, do not carry the plane on their few bumps alone.
-fn cell_weight(n: u32, spread_m: f64) -> f64 {
-    let terrain2 = (spread_m * spread_m - FACE_NOISE_M * FACE_NOISE_M).max(0.0);
-    let n = f64::from(n);
-    n / (1.0 + n * terrain2 / (POINT_NOISE_M * POINT_NOISE_M))
-}
-
-/// One point's height noise that a cell's mean averages away, metres, for
-/// [`cell_weight`]: a Kinect v1's depth noise 1.9 m out (1.425 mm × 1.9²), the middle
-/// of the corridor, and about the height a 10-20 cm bump changes over a 5 cm cell's
-/// part a few points see.
-const POINT_NOISE_M: f64 = 0.005;
 
 /// A plane fitted to cells' ground heights ([`fit_cells`]) and how far they lie off it.
 #[derive(Debug, Clone, Copy)]
@@ -1415,25 +1386,6 @@ mod tests {
         let face = fitted(&f);
         assert_eq!(face.plane, face.fit, "{face:?}");
         assert!((face.plane.toe_x(0.0) - 1.2).abs() < 0.04, "{face:?}");
-    }
-
-    #[test]
-    fn cells_weigh_by_their_points_on_smooth_ground_and_alike_on_rough() {
-        // Smooth: the spread is the cells' own noise, and a cell weighs its points.
-        for n in [1, 7, 40, 2000] {
-            assert_eq!(cell_weight(n, FACE_NOISE_M), f64::from(n));
-            assert_eq!(cell_weight(n, 0.001), f64::from(n));
-        }
-        // Rough (1 cm spread, as ±2.5 cm bumps leave): the ground's own variance,
-        // not the sensor's, sets a cell's; 40 and 2000 points weigh within 2 %, and
-        // one point still less than many.
-        let (few, many) = (cell_weight(40, 0.01), cell_weight(2000, 0.01));
-        assert!((many / few - 1.0).abs() < 0.02, "{few} against {many}");
-        assert!(cell_weight(1, 0.01) < few);
-        // By hand: 1 / (terrain² + noise² / n), times noise², terrain² = 1 cm² − 3 mm².
-        let terrain2 = 0.01f64.powi(2) - FACE_NOISE_M.powi(2);
-        let want = POINT_NOISE_M.powi(2) / (terrain2 + POINT_NOISE_M.powi(2) / 40.0);
-        assert!((few - want).abs() < 1e-12, "{few} against {want}");
     }
 
     #[test]
