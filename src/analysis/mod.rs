@@ -58,6 +58,10 @@ pub(crate) struct StripCell {
     /// `z`, metres; for a sharp top (`crossing::sharp_tops`) its top voxel's highest
     /// point ([`crate::grid::Cell::peak`]). The sharp-top pass swaps the two.
     pub peak: f32,
+    /// The cell's highest point ([`crate::grid::Cell::peak`], or `z` where that is
+    /// higher), metres: how high a stone in it stands, which its mean may read
+    /// several centimetres lower (`crossing::climb`'s stones on a line).
+    pub high: f32,
     /// Where a wheel resting on the cell has its lowest point, metres: `z`, or
     /// higher where a neighbour within a wheel radius holds the wheel up (see
     /// `crossing::wheel_heights`).

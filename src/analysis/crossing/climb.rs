@@ -116,7 +116,13 @@ pub(super) fn strip_hazards(
                     // A window on one line under the limit: a rough ramp's bumps. Every
                     // window on one line over it: a ramp too steep, not a step (which
                     // leaves no window on one line).
-                    let line = line_windows(strip, i, j, wheelbase.min(STEP_WINDOW_MAX_M))
+                    // A rise onto a stone under a wheel radius on a climbable line is
+                    // climbed ([`stone_windows`]).
+                    let window = wheelbase.min(STEP_WINDOW_MAX_M);
+                    let stone =
+                        (dz > 0.0).then(|| stone_windows(strip, i, j, (window, r, min_gap)));
+                    let line = line_windows(strip, i, j, window)
+                        .chain(stone.into_iter().flatten())
                         .reduce(f32::min);
                     match line {
                         Some(k) if k < tan_max => None,
@@ -133,6 +139,12 @@ pub(super) fn strip_hazards(
                 let Some((kind, at)) = kind else { break };
                 if face_along(a, b) {
                     break;
+                }
+                if dz > 0.0
+                    && dz - rough <= r + UNSEEN_FOOT_MARGIN_M
+                    && unseen_foot(strip, i, min_gap)
+                {
+                    continue; // within the margin of a rise whose ground is not seen
                 }
                 verdict.add_hazard(Hazard {
                     kind,
@@ -166,8 +178,12 @@ pub(super) fn strip_hazards(
 /// #151); a 15 cm stone, or a step of a wheel radius and more over the ground's level,
 /// still stands over it. Other ground there (a ramp, a trench's floor and the ground
 /// beside it, a stone at the foot) is no level line and counts nothing: the rise is
-/// measured from its foot. So does a foot with too few cells before it (the strip's first
-/// cells: what is before them is not seen). Cut at a one-cell shadow of a bump, the
+/// measured from its foot. A foot among the strip's first cells has too few before it
+/// for a line (what is before them lies below the image's bottom edge): the step test
+/// gives such a rise the margin of [`unseen_foot`] instead. A 7.2 cm boulder whose
+/// front the view starts on, its first cell in a 1.9 cm dip of lumpy ground, stood
+/// 11.1 cm over that cell, a `step` (`sweep -- natural 100 4110 random 6` #65, clean
+/// and noisy); a 13 cm step there still stops. Cut at a one-cell shadow of a bump, the
 /// ground before an 8.7 cm boulder whose foot lay in a 2 cm dip just past it was too
 /// short to be a line, and the boulder, 9.9 cm over the ground, stood 12 cm over the
 /// dip: a `step` (`sweep -- natural 100 3002 random` #83, clean and noisy). Across a
@@ -196,6 +212,24 @@ fn rough_at_foot(
     } else {
         level.max(level_below(across, &strip[foot]))
     }
+}
+
+/// Whether the rise from `strip[foot]` comes from ground not seen: the foot is among
+/// the strip's first cells, fewer than [`FOOT_LEVEL_MIN_CELLS`] from its start,
+/// contiguous or across holes shorter than `min_gap` cells (what is before them lies
+/// below the image's bottom edge), so that [`rough_at_foot`] has no line before it.
+/// Such a rise counts [`UNSEEN_FOOT_MARGIN_M`] over a wheel radius, as other rises
+/// whose foot is not seen do: the foot's cell may be one of rough ground's dips. The
+/// margin only spares a pair of cells the step test would call a hazard, and the test
+/// goes on to the cells past it (a step rises by more a cell later, as the wheel
+/// meets it); a pair it does not call a hazard still ends the search there. Had the
+/// margin raised the height that starts the search instead, the first pair judged
+/// would move on: a 9 cm cone whose rise from the strip's first cell, a rough ramp's
+/// bumps to the step test, passed the wheel radius and the margin over a longer run
+/// was judged a `slope` there (`sweep -- natural 200 6822 random 7` #52).
+fn unseen_foot(strip: &[StripCell], foot: usize, min_gap: usize) -> bool {
+    foot + 1 < FOOT_LEVEL_MIN_CELLS
+        && reach_back(strip, foot, min_gap.max(1), (strip[foot].x, f32::INFINITY)) == 0
 }
 
 /// How far `foot`'s wheel lies under the level line of `ground` (at most
@@ -384,20 +418,31 @@ fn line_windows(
 }
 
 /// The slopes |dz/dx| of the windows about a run `strip[i..=j]` (as [`line_windows`],
-/// but stepping over holes shorter than `min_gap` cells) that lie on one line but for
-/// a stone on it ([`line_under_stones`]): a 6 cm rock 0.25 m up a 17° ramp leaves no
-/// window on one line (it stands off the line, and its shadow breaks the window), and
-/// the run from the toe to its top climbed 31°: a `slope` (`sweep -- families 150 6921
-/// random 10` #82, clean and noisy). The stone, under a wheel radius, is a step the
-/// wheel climbs.
+/// but stepping over holes shorter than `min_gap` cells, and over a stone's shadow of
+/// up to [`STONE_SHADOW_CELLS`]) that lie on one line but for a stone on it
+/// ([`line_under_stones`]): a 6 cm rock 0.25 m up a 17° ramp leaves no window on one
+/// line (it stands off the line, and its shadow breaks the window), and the run from
+/// the toe to its top climbed 31°: a `slope` (`sweep -- families 150 6921 random 10`
+/// #82, clean and noisy). The stone, under a wheel radius, is a step the wheel climbs.
+/// A 5.5 cm boulder 0.47 m up a 17.9° ramp, seen from 0.61 m up, hid the two cells
+/// past it, and the window stopped at that hole: a `slope` (`sweep -- natural 100
+/// 4102 random 10` #80, clean and noisy). The ground on both sides of the shadow is
+/// the one line the window asks for; what the hole hides is the gap test's to judge.
 fn stone_windows(
     strip: &[StripCell],
     i: usize,
     j: usize,
     (wheelbase, r, min_gap): (f32, f32, usize),
 ) -> impl Iterator<Item = f32> + '_ {
-    windows(strip, i, j, wheelbase, min_gap).filter_map(move |w| line_under_stones(w, r))
+    let step = min_gap.max(STONE_SHADOW_CELLS + 1);
+    windows(strip, i, j, wheelbase, step).filter_map(move |w| line_under_stones(w, r))
 }
+
+/// Longest hole a [`stone_windows`] window steps over, cells: the shadow a stone under
+/// a wheel radius casts on a ramp that rises toward the camera's line of sight (two
+/// cells at 2 m for 5.5 cm from 0.61 m up; the ramp shortens what flat ground would
+/// show). Longer holes end the window.
+const STONE_SHADOW_CELLS: usize = 3;
 
 /// The windows of [`line_windows`]: a wheelbase of cells seen whole starting at the
 /// run `strip[i..=j]`'s start and one ending at its end, each at least 0.9 wheelbase
@@ -431,8 +476,13 @@ fn windows(
 /// out at most a third of the window, never its first or last cell (ground on the
 /// line before and after the stone: not a climb going on), and no cell stands a
 /// wheel radius `r` above the line (a stone the wheel climbs, judged by the step
-/// test). Cells below the line are never left out: a bank's flat foot and its top
-/// are not one line with a stone. `None` otherwise, or for a window over 64 cells.
+/// test), nor has its highest point ([`StripCell::high`]) a wheel radius and
+/// [`UNSEEN_FOOT_MARGIN_M`] above it (the margin for rough ground's bumps and depth
+/// noise, which lift a 9 cm pebble's highest point 11-12 cm over the line): a 16 cm
+/// mound up a ramp whose cells' means stood 8 cm over its line is no stone a wheel
+/// climbs. Cells
+/// below the line are never left out: a bank's flat foot and its top are not one
+/// line with a stone. `None` otherwise, or for a window over 64 cells.
 fn line_under_stones(run: &[StripCell], r: f32) -> Option<f32> {
     let n = run.len();
     if n > 64 {
@@ -447,7 +497,10 @@ fn line_under_stones(run: &[StripCell], r: f32) -> Option<f32> {
             .filter(move |(k, _)| out & (1 << k) == 0);
         let (line, rms) = line_fit(kept.clone().map(|(_, c)| (c.x, c.wheel)))?;
         if rms <= f64::from(ROUGH_LINE_RMS_M) {
-            let under_r = run.iter().all(|c| off(&line, c) < r);
+            let under_r = run.iter().all(|c| {
+                let on_line = line.z(f64::from(c.x), 0.0) as f32;
+                c.wheel - on_line < r && c.high - on_line < r + UNSEEN_FOOT_MARGIN_M
+            });
             return under_r.then_some(line.a.abs() as f32);
         }
         let (k, above) = kept
@@ -514,6 +567,7 @@ mod tests {
                 ix: 20 + i,
                 past: false,
                 peak: z,
+                high: z,
                 wheel: z,
             })
             .collect()
@@ -522,18 +576,7 @@ mod tests {
     /// The hazards `strip_hazards` reports on a strip at heights `z(x)`, x from 1.0 m
     /// in 5 cm cells (wheel radius 0.11 m, limit 30°, wheelbase 0.6 m).
     fn hazards_on(z: impl Fn(f32) -> f32) -> Vec<Hazard> {
-        let mut run = strip(&(0..30).map(|i| z(0.05 * i as f32)).collect::<Vec<_>>());
-        wheel_heights(&mut run, 0.11);
-        let mut v = Verdict::default();
-        strip_hazards(
-            &run,
-            Region::Left,
-            (0.11, 30f32.to_radians().tan(), 0.6, 2),
-            (VS, false),
-            &|_, _| false,
-            &mut v,
-        );
-        v.hazards.to_vec()
+        hazards_with_hole(z, 0..0)
     }
 
     /// The slope hazards of [`hazards_on`].
@@ -555,6 +598,7 @@ mod tests {
                 ix: 20 + i,
                 past: false,
                 peak: z,
+                high: z,
                 wheel: z,
             })
             .collect();
@@ -620,7 +664,9 @@ mod tests {
         };
         assert_eq!(
             nearest(&hazards_on(taller)).map(|h| h.kind),
-            Some(HazardKind::Step)
+            Some(HazardKind::Step),
+            "{:?}",
+            hazards_on(taller)
         );
         let up = |x: f32| z[(x / 0.05).round() as usize] + if x > 0.93 { 0.15 } else { 0.0 };
         let down = |x: f32| z[(x / 0.05).round() as usize] - if x > 0.93 { 0.15 } else { 0.0 };
@@ -756,6 +802,7 @@ mod tests {
                 ix: (x / VS) as usize,
                 past: false,
                 peak: k * z,
+                high: k * z,
                 wheel: k * z,
             })
             .collect();
@@ -796,5 +843,178 @@ mod tests {
         // before it) is climbed, read either way.
         assert!(found(&beside_a_cone(0.7, true), true).is_empty());
         assert!(found(&beside_a_cone(0.7, false), false).is_empty());
+    }
+
+    /// The hazards `strip_hazards` reports on a strip at heights `z(x)` from 1.0 m in
+    /// 5 cm cells as [`hazards_on`], with the cells `unseen` left out (a shadow).
+    fn hazards_with_hole(z: impl Fn(f32) -> f32, unseen: std::ops::Range<usize>) -> Vec<Hazard> {
+        let mut run = strip(&(0..30).map(|i| z(0.05 * i as f32)).collect::<Vec<_>>());
+        run.retain(|c| !unseen.contains(&(c.ix - 20)));
+        wheel_heights(&mut run, 0.11);
+        let mut v = Verdict::default();
+        strip_hazards(
+            &run,
+            Region::Left,
+            (0.11, 30f32.to_radians().tan(), 0.6, 2),
+            (VS, false),
+            &|_, _| false,
+            &mut v,
+        );
+        v.hazards.to_vec()
+    }
+
+    /// A 17.9° ramp from 0.2 m with a mound `h` high (radius 9 cm) 0.55 m up it, at
+    /// 0.75 m: heights at `x` metres along the strip.
+    fn stone_on_a_ramp(h: f32) -> impl Fn(f32) -> f32 {
+        move |x: f32| {
+            let ramp = 17.9f32.to_radians().tan() * (x - 0.2).max(0.0);
+            let d = (x - 0.75).abs() / 0.09;
+            let mound = if d < 1.0 {
+                h * (d * std::f32::consts::FRAC_PI_2).cos().powi(2)
+            } else {
+                0.0
+            };
+            ramp + mound
+        }
+    }
+
+    #[test]
+    fn a_stone_under_a_wheel_radius_on_a_climbable_ramp_is_climbed_shadow_or_not() {
+        // The ramp's rise under the stone adds to it: within three cells the wheel
+        // climbs more than its radius, steeper than the limit, as over a step. But
+        // the ground before and past the stone is one 17.9° line, and the stone on it
+        // is under a wheel radius (`sweep -- natural 100 4102 random 10` #17).
+        let seen = stone_on_a_ramp(0.07);
+        let (at, top) = (|x: f32| (x * 20.0).round() / 20.0, 0.75);
+        assert!(seen(at(top)) - seen(at(top - 0.15)) > 0.11);
+        assert!(hazards_on(&seen).is_empty(), "{:?}", hazards_on(&seen));
+        // Two cells past it in its shadow (#80): the line goes on past the hole.
+        let shadowed = hazards_with_hole(&seen, 16..18);
+        assert!(shadowed.is_empty(), "{shadowed:?}");
+        // A stone taller than a wheel radius on the ramp stops, shadow or not; so does
+        // a step of a wheel radius and more up it, and a ramp over the limit.
+        for h in [
+            hazards_on(stone_on_a_ramp(0.14)),
+            hazards_with_hole(stone_on_a_ramp(0.14), 16..18),
+            hazards_with_hole(stone_on_a_ramp(0.14), 16..19),
+            hazards_on(|x| stone_on_a_ramp(0.0)(x) + if x > 0.75 { 0.13 } else { 0.0 }),
+            hazards_on(|x| {
+                32f32.to_radians().tan() * (x - 0.2).max(0.0) + stone_on_a_ramp(0.07)(x)
+                    - stone_on_a_ramp(0.0)(x)
+            }),
+        ] {
+            assert!(!h.is_empty());
+        }
+    }
+
+    #[test]
+    fn a_rise_from_the_strips_first_cells_is_given_the_margin_for_an_unseen_foot() {
+        // Lumpy ground seen from 0.74 m, the first cell in a 1.9 cm dip right before a
+        // 7.2 cm boulder: its top stands 11.1 cm over the dip (`sweep -- natural 100
+        // 4110 random 6` #65, 848×480 camera 0.77 m high, left strip from ix 14).
+        const FIRST_IN_A_DIP: [f32; 29] = [
+            -0.019, 0.025, 0.084, 0.092, 0.074, 0.052, -0.021, -0.017, -0.013, -0.008, 0.005,
+            0.016, 0.014, 0.002, -0.006, -0.005, -0.002, 0.0, -0.004, -0.010, -0.011, 0.001, 0.018,
+            0.023, 0.015, 0.005, 0.002, -0.009, -0.018,
+        ];
+        let z = |x: f32| FIRST_IN_A_DIP[((x / 0.05).round() as usize).min(28)];
+        assert!(z(0.15) - z(0.0) > 0.11);
+        // What the wheels come from is not seen: the rise is within rough ground's
+        // margin of a wheel radius, as a 9 cm pebble on a bump is.
+        assert!(hazards_on(z).is_empty(), "{:?}", hazards_on(z));
+        // A stone 4 cm taller, and a 13 cm step at the strip's first cells, stop.
+        let taller = |x: f32| {
+            z(x) + if (0.05..=0.25).contains(&x) {
+                0.04
+            } else {
+                0.0
+            }
+        };
+        assert!(!hazards_on(taller).is_empty());
+        let step = |x: f32| if x > 0.07 { 0.13 } else { 0.0 };
+        assert_eq!(
+            nearest(&hazards_on(step)).map(|h| h.kind),
+            Some(HazardKind::Step)
+        );
+        // Past the first cells the rise is measured from its foot as before.
+        let later = |x: f32| z((x - 0.3).max(0.0)) - if x < 0.3 { 0.019 } else { 0.0 };
+        assert!(!hazards_on(later).is_empty());
+    }
+
+    /// The right track's strip over a 5.9 cm mound 0.49 m up a 15.6° ramp, as the
+    /// sharp-top pass reads it: cell centres and means (x, z), the mound's cell at its
+    /// highest point 19.7 cm (its mean 16.6 cm), one cell past it unseen (`sweep --
+    /// natural 100 4102 random 10` #17, Kinect v2 0.51 m high), the mound's top `lift`
+    /// metres higher.
+    fn mound_up_a_ramp(lift: f32) -> Vec<StripCell> {
+        let cells: [(usize, f32, f32); 26] = [
+            (17, 0.874, 0.0),
+            (18, 0.924, 0.0),
+            (19, 0.974, 0.0),
+            (20, 1.025, 0.0),
+            (21, 1.075, 0.006),
+            (22, 1.125, 0.020),
+            (23, 1.174, 0.034),
+            (24, 1.224, 0.048),
+            (25, 1.275, 0.062),
+            (26, 1.324, 0.076),
+            (27, 1.374, 0.090),
+            (28, 1.425, 0.104),
+            (29, 1.478, 0.125),
+            (30, 1.519, 0.166),
+            (32, 1.638, 0.165),
+            (33, 1.676, 0.175),
+            (34, 1.725, 0.189),
+            (35, 1.775, 0.202),
+            (36, 1.825, 0.216),
+            (37, 1.874, 0.230),
+            (38, 1.924, 0.244),
+            (39, 1.974, 0.258),
+            (40, 2.024, 0.272),
+            (41, 2.075, 0.286),
+            (42, 2.124, 0.300),
+            (43, 2.174, 0.314),
+        ];
+        let mut run: Vec<StripCell> = cells
+            .iter()
+            .map(|&(ix, x, z)| StripCell {
+                x,
+                z,
+                ix,
+                past: false,
+                peak: z,
+                high: z,
+                wheel: z,
+            })
+            .collect();
+        (run[13].z, run[13].high) = (0.197 + lift, 0.197 + lift);
+        wheel_heights(&mut run, 0.11);
+        run
+    }
+
+    #[test]
+    fn a_mound_up_a_ramp_read_at_its_sharp_top_is_climbed() {
+        let found = |run: &[StripCell]| {
+            let mut v = Verdict::default();
+            let limits = (0.11, 30f32.to_radians().tan(), 0.6, 2);
+            strip_hazards(
+                run,
+                Region::Right,
+                limits,
+                (VS, true),
+                &|_, _| false,
+                &mut v,
+            );
+            v.hazards.to_vec()
+        };
+        // From 0.15 m before it, the wheel climbs 11.1 cm to the top at 36°: a step,
+        // were it not a stone under a wheel radius on the ramp's line.
+        let run = mound_up_a_ramp(0.0);
+        assert!(run[13].wheel - run[9].wheel > 0.11);
+        assert!(found(&run).is_empty(), "{:?}", found(&run));
+        // 4 cm higher (9.9 cm over the ramp, 12.4 cm past the cell's mean), and it is
+        // still climbed; 7 cm higher, a wheel radius over the ramp, it stops.
+        assert!(found(&mound_up_a_ramp(0.04)).is_empty());
+        assert!(!found(&mound_up_a_ramp(0.07)).is_empty());
     }
 }

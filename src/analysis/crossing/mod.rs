@@ -160,6 +160,7 @@ pub fn steps_and_slopes(
                     ix,
                     past,
                     peak: z,
+                    high: cell.peak.max(z),
                     wheel: z,
                 });
             }
