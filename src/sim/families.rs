@@ -367,6 +367,8 @@ pub fn surface_toe(terrain: &Terrain, config: &Config, near: f64, far: f64) -> O
     let (inner, outer) = (config.rover.belly_half_width_m, config.rover.track_outer_m);
     let field = terrain.field();
     let (mut sx, mut sz, mut sxx, mut sxz, mut m) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    // `max(-1.0)`: a NaN span (a NaN `far`) gives −1 columns, none, where `as i64`
+    // alone would make it 0 and fit one column of NaN heights.
     let steps_x = ((far - near) / 0.01).floor().max(-1.0) as i64;
     let steps_y = ((outer - inner) / 0.01).ceil() as i64;
     for i in 0..=steps_x {

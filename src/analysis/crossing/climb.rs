@@ -480,9 +480,8 @@ fn windows(
 /// [`UNSEEN_FOOT_MARGIN_M`] above it (the margin for rough ground's bumps and depth
 /// noise, which lift a 9 cm pebble's highest point 11-12 cm over the line): a 16 cm
 /// mound up a ramp whose cells' means stood 8 cm over its line is no stone a wheel
-/// climbs. Cells
-/// below the line are never left out: a bank's flat foot and its top are not one
-/// line with a stone. `None` otherwise, or for a window over 64 cells.
+/// climbs. Cells below the line are never left out: a bank's flat foot and its top
+/// are not one line with a stone. `None` otherwise, or for a window over 64 cells.
 fn line_under_stones(run: &[StripCell], r: f32) -> Option<f32> {
     let n = run.len();
     if n > 64 {
