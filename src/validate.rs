@@ -486,7 +486,7 @@ pub struct FamilyResult {
     pub got: Verdict,
     /// Every way it missed its bar.
     pub failures: Vec<String>,
-    /// Not go for a stone, rock or block whose top the camera cannot see
+    /// Not go for a stone, rock, block or step up whose top the camera cannot see
     /// ([`crate::sim::sight::not_go_for_unseen_tops`]): how high it stands is not
     /// seen. Still counted as missed where the bar says go; the report
     /// says why.

@@ -16,7 +16,8 @@ use crate::verdict::{Decision, Hazard, Side, Verdict};
 /// front's first centimetres rise in, and a cell's rounding.
 pub const TOP_REACH_M: f64 = 0.3;
 
-/// A stone, rock or block whose top the camera cannot see ([`unseen_tops`]).
+/// A stone, rock, block or step up (in one band) whose top the camera cannot see
+/// ([`unseen_tops`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct UnseenTop {
     /// Its top, rover frame, metres.
@@ -45,15 +46,18 @@ impl UnseenTop {
     }
 }
 
-/// The stones, rocks and blocks of `terrain` within `config`'s corridor (their
-/// footprint reaching into `x < corridor_length_m`, `|y| < track_outer_m`) whose top
-/// the camera cannot see. A stone's or rock's top is its apex (the terrain's height
-/// at its centre, with whatever lies under it); a block's is the near edge of its top
-/// face. It is out of view when it lies behind the camera, outside the image, in the
-/// image's top [`CUT_ROWS`] rows (where the analysis takes the view as cut), or
-/// outside the sensor's range `[min_range_m, max_range_m]` (optical depth). How high
-/// such an obstacle stands is then not seen, only that it reaches the view's end.
-/// Occlusion by nearer terrain is not considered.
+/// The stones, rocks, blocks and rising steps of `terrain` within `config`'s corridor
+/// (their footprint reaching into `x < corridor_length_m`, `|y| < track_outer_m`)
+/// whose top the camera cannot see. A stone's or rock's top is its apex (the
+/// terrain's height at its centre, with whatever lies under it); a block's is the
+/// near edge of its top face. A step up is taken band by band (each wheel track and
+/// the belly band, [`step_tops`]): its top there is its upper ground a voxel past
+/// `x_m`, in the middle of the part of the band it covers. It is out of view when it lies behind
+/// the camera, outside the image, in the image's top [`CUT_ROWS`] rows (where the
+/// analysis takes the view as cut), or outside the sensor's range `[min_range_m,
+/// max_range_m]` (optical depth). How high such an obstacle stands is then not seen,
+/// only that it reaches the view's end. Occlusion by nearer terrain is not
+/// considered.
 pub fn unseen_tops(terrain: &Terrain, config: &Config) -> Vec<UnseenTop> {
     let cam = &config.camera;
     let p = Projector::new(config, cam.width as usize, cam.height as usize);
@@ -101,7 +105,64 @@ pub fn unseen_tops(terrain: &Terrain, config: &Config) -> Vec<UnseenTop> {
             }
             _ => None,
         })
+        .chain(
+            terrain
+                .elements
+                .iter()
+                .flat_map(|e| step_tops(terrain, e, config)),
+        )
         .filter(|o| in_corridor(o) && !in_view(o.top))
+        .collect()
+}
+
+/// A rising step's tops, one per band it covers (the right track, the belly band,
+/// the left track, as [`Side`] divides the corridor): its edge just past `x_m`, in the
+/// middle of the part of the band the step covers (where its extent raises the
+/// ground by half its height or more), a voxel (`analysis.voxel_m`) past its edge: the
+/// rise is seen to end only where the ground past it is seen whole. Its footprint is
+/// that part across, and the edge along x. Where the image's top edge cuts a step's face over one wheel track, that
+/// track sees the face rise and not how high it goes, whatever the other bands see: a
+/// 7.2 cm step across the left half, its top seen only in the belly band by a camera
+/// pitched 38° and yawed 8°, was `unknown` in the left track (`sweep -- hazards 100
+/// 4204 random` #28). Nothing for any other element, or a step down (its top is the
+/// ground before it).
+fn step_tops(terrain: &Terrain, e: &Element, config: &Config) -> Vec<UnseenTop> {
+    let Element::Step {
+        x_m,
+        height_m,
+        extent,
+    } = *e
+    else {
+        return Vec::new();
+    };
+    if height_m <= 0.0 {
+        return Vec::new();
+    }
+    let (b, o) = (config.rover.belly_half_width_m, config.rover.track_outer_m);
+    // The band sampled every centimetre: its covered part, [lowest, highest] y (a
+    // part no wider than a sample, the band's edge on the step's, is none).
+    const SAMPLES: usize = 100;
+    [[-o, -b], [-b, b], [b, o]]
+        .into_iter()
+        .filter_map(|[lo, hi]| {
+            let covered = (0..=SAMPLES)
+                .map(|k| lo + (hi - lo) * k as f64 / SAMPLES as f64)
+                .filter(|&y| extent.share(y) >= 0.5);
+            let (from, to) = covered.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, z), y| {
+                (a.min(y), z.max(y))
+            });
+            (from < to).then(|| {
+                // A cell past the edge: the rise is seen to end only where ground
+                // past it is seen whole (a cell the view's end cuts holds only the
+                // lower part of what is there).
+                let (x, y) = (x_m + config.analysis.voxel_m, 0.5 * (from + to));
+                UnseenTop {
+                    top: Vector3::new(x, y, terrain.height(x, y)),
+                    x_m: [x_m, x_m],
+                    y_m: [from, to],
+                }
+            })
+        })
         .collect()
 }
 
@@ -120,6 +181,7 @@ pub fn not_go_for_unseen_tops(v: &Verdict, tops: &[UnseenTop], rover: &RoverConf
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::Extent;
 
     /// The top of the first obstacle [`unseen_tops`] finds.
     fn unseen_top(terrain: &Terrain, config: &Config) -> Option<Vector3<f64>> {
@@ -175,6 +237,71 @@ mod tests {
         assert!(unseen_top(&rock(2.0, -outer - 0.1, 0.25), &c).is_some());
         // Behind the camera.
         assert!(unseen_top(&rock(-0.3, 0.0, 0.25), &c).is_some());
+    }
+
+    #[test]
+    fn a_rising_step_s_tops_are_its_upper_ground_a_voxel_past_its_edge_band_by_band() {
+        // The default camera pitched 45°, as above: its third row from the top looks
+        // 23.66° down. A 0.1 m step's upper ground is 0.7 m under the camera, so it
+        // is in view nearer than 0.7 m / tan 23.66° = 1.597 m; its top is taken a
+        // voxel (0.05 m) past the edge, so the edge may lie out to 1.547 m.
+        let mut c = Config::default();
+        c.mount.pitch_deg = 45.0;
+        let half = 21.5f64.to_radians();
+        let row2 = 45f64.to_radians() - ((0.5 - 2.0 / 480.0) * 2.0 * half.tan()).atan();
+        let edge = 0.7 / row2.tan() - c.analysis.voxel_m;
+        assert!((edge - 1.547).abs() < 0.001, "{edge}");
+        let step = |x_m: f64, height_m: f64, extent: Extent| {
+            unseen_tops(
+                &Terrain::new(vec![Element::Step {
+                    x_m,
+                    height_m,
+                    extent,
+                }]),
+                &c,
+            )
+        };
+        assert!(step(edge - 0.03, 0.1, Extent::Left).is_empty());
+        // Across the left half: the left track's and the belly band's left half.
+        let tops = step(edge + 0.03, 0.1, Extent::Left);
+        assert_eq!(tops.len(), 2, "{tops:?}");
+        for (o, y, y_m) in [(&tops[0], 0.1, [0.0, 0.2]), (&tops[1], 0.45, [0.2, 0.7])] {
+            assert!(
+                (o.top - Vector3::new(edge + 0.08, y, 0.1)).norm() < 1e-9,
+                "{o:?}"
+            );
+            assert!((o.y_m[0] - y_m[0]).abs() < 1e-9 && (o.y_m[1] - y_m[1]).abs() < 1e-9);
+            assert_eq!(o.x_m, [edge + 0.03; 2]);
+        }
+        // Each explains a hazard in its own band only.
+        let rover = &c.rover;
+        let left = Hazard {
+            kind: crate::verdict::HazardKind::Unknown,
+            side: Side::Left,
+            distance_m: (edge + 0.03) as f32,
+        };
+        let centre = Hazard {
+            side: Side::Centre,
+            ..left
+        };
+        assert!(tops[1].explains(&left, rover, TOP_REACH_M));
+        assert!(!tops[1].explains(&centre, rover, TOP_REACH_M));
+        assert!(tops[0].explains(&centre, rover, TOP_REACH_M));
+        assert!(!tops[0].explains(&left, rover, TOP_REACH_M));
+        // The whole width: one per band. Under one track: that track's alone.
+        assert_eq!(step(edge + 0.03, 0.1, Extent::Full).len(), 3);
+        let band = step(
+            edge + 0.03,
+            0.1,
+            Extent::Band {
+                from_m: -0.7,
+                to_m: -0.2,
+            },
+        );
+        assert_eq!(band.len(), 1, "{band:?}");
+        assert!((band[0].top.y + 0.45).abs() < 1e-9);
+        // A step down's top is the ground before it, in view.
+        assert!(step(edge + 0.03, -0.1, Extent::Full).is_empty());
     }
 
     #[test]
