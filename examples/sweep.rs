@@ -4,7 +4,7 @@
 //! `-- families [N] [SEED] [default|random] [FAMILY-INDEX]` for the scene families of
 //! `sim::families` on the default rig or on random mounts and cameras (without an
 //! index, `Family::ALL`'s in turn; index 11 is `Family::LATER`'s rock under the belly
-//! beside a one-track ramp), or
+//! beside a one-track ramp, 12 its rock on a descent), or
 //! `-- natural [N] [SEED] [default|random] [FAMILY-INDEX]` for the same scenes drawn
 //! another way (`families::restyled`: value-noise rough ground, stones of four other
 //! shapes), or `-- bevelled [N] [SEED] [default|random] [FAMILY-INDEX]` for them
@@ -48,7 +48,7 @@
 //! before it (`RELIEF #N ...`, sampled from the height field); a stop where a go was
 //! due prints it for every stone and rock.
 //!
-//! Where a stone, rock or block in the corridor has its top out of view
+//! Where a stone, rock, block or step up in the corridor has its top out of view
 //! (`sim::sight::unseen_tops`: outside the image or its top rows, or out of range),
 //! how high it stands is not seen: a verdict not go whose every hazard lies within
 //! `sim::sight::TOP_REACH_M` of such an obstacle along x, on its side, passes (a go is judged as
@@ -317,7 +317,7 @@ fn main() {
             sim::render(&terrain, &config)
         };
         let unseen = unseen_at_grazing(mode, &want, &terrain, &config);
-        // A stone, rock or block whose top the camera cannot see: how high it stands
+        // A stone, rock, block or step up whose top the camera cannot see: how high it stands
         // is not seen, so any verdict but go is right (a go is judged as usual).
         let unseen_tops = sim::sight::unseen_tops(&terrain, &config);
         for noisy in [false, true] {
@@ -375,7 +375,7 @@ fn main() {
         approaches.report(drive);
     }
     println!(
-        "{top_excused} frames not go for a stone, rock or block whose top is out of view (passed)"
+        "{top_excused} frames not go for a stone, rock, block or step whose top is out of view (passed)"
     );
     if mode == "oblique" || FAMILY_MODES.contains(&mode) {
         println!(

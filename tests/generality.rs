@@ -1799,6 +1799,64 @@ fn a_stone_under_a_wheel_radius_up_a_ramp_is_climbed_and_a_tall_one_is_not() {
 }
 
 #[test]
+fn a_stone_under_a_wheel_radius_down_a_descent_is_descended_and_a_tall_one_is_not() {
+    // The default rig over full-width descents from 1 m with a stone (radius 9 cm) in
+    // the left track. The stone's back and the descent fall together: a 6 cm boulder
+    // 0.6 m down an 18° descent fell 11.5 cm over three cells, a `step`; a 9 cm
+    // boulder 0.3 m down a 12° one hid 0.15 m of the descent, and the ground past that
+    // stood 14 cm under its top, a `drop_off`. Both stand under a wheel radius over
+    // the descent. A 16 cm stone does not: a cone 0.6 m down a 25° descent and a
+    // mound 1 m down a 12° one were a go, their apex cells' means 9 cm over the
+    // descent, the ground past them in their shadow on the descent's line.
+    let c = Config::default();
+    let on_descent = |g: f64, x: f64, height_m: f64, shape: StoneShape| {
+        vec![
+            Element::ramp(1.0, 0.0, g, 0.0, Extent::Full),
+            Element::stone(x, 0.45, 0.09, height_m, shape),
+        ]
+    };
+    let shapes = [StoneShape::Mound, StoneShape::Boulder, StoneShape::Cone];
+    let mut seed = 4_300_000;
+    for (g, x) in [(-12.0, 1.3), (-18.0, 1.6), (-25.0, 1.3)] {
+        for (shape, h) in shapes.into_iter().flat_map(|s| [(s, 0.06), (s, 0.09)]) {
+            seed += 1;
+            for v in analyse_views(on_descent(g, x, h, shape), &c, [None, Some(seed)]) {
+                let at = format!("{g}° {x} m {h} m {shape:?}");
+                assert_eq!(v.decision, Decision::Go, "{at}: {:?}", v.hazards);
+                let f = v.feature.expect("a go has a feature");
+                assert_eq!(f.workcase, 8, "{at}: {f:?}");
+                assert!((f64::from(f.distance_m.unwrap()) - 1.0).abs() < 0.02);
+                assert!((f64::from(f.gradient_deg.unwrap()) - g).abs() < 1.0);
+            }
+        }
+    }
+    for (g, x) in [(-25.0, 1.6), (-12.0, 2.0), (-18.0, 1.3)] {
+        for shape in shapes {
+            seed += 1;
+            for v in analyse_views(on_descent(g, x, 0.16, shape), &c, [None, Some(seed)]) {
+                assert_ne!(v.decision, Decision::Go, "{g}° {x} m {shape:?}");
+            }
+        }
+    }
+    // A 15.7 cm cone 0.39 m down an 11° descent, seen by a Kinect v2 1.17 m up
+    // (`sweep -- natural 100 4304 random 12` #51): the cells behind its apex lie in
+    // its shadow, so no gap is judged there, and only the fall from its apex cell
+    // (14.5 cm over the descent past it) tells its height.
+    let mut v2 = kinect_v2(mounted(
+        [0.1129, -0.0887, 1.1696],
+        [-0.9082, 24.7358, -7.3771],
+    ));
+    v2.camera.min_range_m = 0.4348;
+    let cone = vec![
+        Element::ramp(1.2687, 0.0, -10.7642, 0.0, Extent::Full),
+        Element::stone(1.6555, -0.5110, 0.1755, 0.1574, StoneShape::Cone),
+    ];
+    for v in analyse_views(cone, &v2, [None, Some(4_304_051)]) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
+#[test]
 fn a_descent_met_at_grazing_incidence_is_measured_as_a_slope() {
     // `near_edge -- 300 5304 rough` #158: the default rig over a 20° descent across
     // the corridor from 1.93 m. Its rays meet the slope at under 2°, so it is seen one

@@ -46,6 +46,9 @@ pub enum Family {
     TwoRamps,
     /// A rock on a full-width ramp: a 4-8 cm pebble is go, a 15-20 cm rock stop.
     RockOnRamp,
+    /// A rock on a full-width descent (10-18° down): a 3-6 cm pebble is go, a 15-20 cm
+    /// rock stop. The pebble's back and the descent fall together.
+    RockOnDescent,
     /// A rock under the belly while one track climbs a straight ramp beside it: the
     /// body rolls, and its belly rests on the line between the tracks. Go or stop by
     /// a hand calculation of the belly's clearance over the rock
@@ -72,7 +75,7 @@ impl Family {
     /// Families added after [`Family::ALL`]'s sweeps were measured, drawn when asked
     /// for by index (after ALL's: [`Family::by_index`]) and in the validation report
     /// after ALL's, so that a sweep over ALL draws what it drew before.
-    pub const LATER: [Family; 1] = [Family::BellyRockBesideRamp];
+    pub const LATER: [Family; 2] = [Family::BellyRockBesideRamp, Family::RockOnDescent];
 
     /// Family `k`: [`Family::ALL`]'s, then [`Family::LATER`]'s; `None` past them.
     pub fn by_index(k: usize) -> Option<Family> {
@@ -130,6 +133,7 @@ impl Family {
             Family::TwoRamps => "two ramps",
             Family::RockOnRamp => "rock on ramp",
             Family::BellyRockBesideRamp => "belly rock beside a ramp",
+            Family::RockOnDescent => "rock on descent",
         }
     }
 }
@@ -622,13 +626,14 @@ pub fn draw<R: Rng>(rng: &mut R, family: Family, rig: Rig) -> Draw {
         Family::RockFieldWithBoulder => rock_field_with_boulder(rng, &at),
         Family::BellyRock => belly_rock(rng, &at),
         Family::TwoRamps => two_ramps(rng, &at),
-        Family::RockOnRamp => rock_on_ramp(rng, &at),
+        Family::RockOnRamp => rock_on_slope(rng, &at, 1.0),
+        Family::RockOnDescent => rock_on_slope(rng, &at, -1.0),
         Family::BellyRockBesideRamp => belly_rock_beside_ramp(rng, &at),
     };
     let rough_ground = elements
         .iter()
         .any(|e| matches!(e, Element::Rough { amplitude_m, .. } if *amplitude_m > 0.015))
-        || family == Family::RockOnRamp;
+        || matches!(family, Family::RockOnRamp | Family::RockOnDescent);
     Draw {
         family,
         terrain: Terrain::new(elements),
@@ -939,13 +944,14 @@ fn belly_margin(at: &Setting, (toe, gradient): (f64, f64), rock: (f64, f64, f64,
 /// clear of the belly or into it, metres.
 const BELLY_MARGIN_M: f64 = 0.05;
 
-/// A pebble or a rock on a full-width ramp.
-fn rock_on_ramp<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
+/// A pebble or a rock on a full-width ramp (`sign` 1) or descent (`sign` −1).
+fn rock_on_slope<R: Rng>(rng: &mut R, at: &Setting, sign: f64) -> Scene {
     let d = rng.gen_range(at.toe_span.0.max(0.8)..at.toe_span.1.max(0.9));
     let big = rng.gen_bool(0.5);
-    // A pebble's front adds to the ramp's rise: keep the two within the
-    // climbable (a 6 cm pebble on an 18° ramp rises 11 cm in 14 cm).
-    let g = rng.gen_range(10.0..18.0);
+    // A pebble's front adds to the ramp's rise, and its back to the descent's fall:
+    // keep the two within the climbable (a 6 cm pebble on an 18° ramp rises 11 cm in
+    // 14 cm).
+    let g = sign * rng.gen_range(10.0..18.0);
     let height_m = if big {
         rng.gen_range(0.15..0.2)
     } else {
@@ -964,7 +970,7 @@ fn rock_on_ramp<R: Rng>(rng: &mut R, at: &Setting) -> Scene {
     let want = if big {
         stop_any()
     } else {
-        go(2, Some(d), Some(g), None)
+        go(if sign > 0.0 { 2 } else { 8 }, Some(d), Some(g), None)
     };
     (
         vec![Element::ramp(d, 0.0, g, 0.0, Extent::Full), rock],

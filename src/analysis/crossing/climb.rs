@@ -117,12 +117,17 @@ pub(super) fn strip_hazards(
                     // window on one line over it: a ramp too steep, not a step (which
                     // leaves no window on one line).
                     // A rise onto a stone under a wheel radius on a climbable line is
-                    // climbed ([`stone_windows`]).
+                    // climbed ([`stone_windows`]); a fall from one onto such a line
+                    // is descended ([`fall_onto_line`]).
                     let window = wheelbase.min(STEP_WINDOW_MAX_M);
                     let stone =
                         (dz > 0.0).then(|| stone_windows(strip, i, j, (window, r, min_gap)));
+                    let onto = (dz < 0.0)
+                        .then(|| fall_onto_line(strip, i, j, (wheelbase, r, tan_max)))
+                        .flatten();
                     let line = line_windows(strip, i, j, window)
                         .chain(stone.into_iter().flatten())
+                        .chain(onto)
                         .reduce(f32::min);
                     match line {
                         Some(k) if k < tan_max => None,
@@ -436,6 +441,41 @@ fn stone_windows(
 ) -> impl Iterator<Item = f32> + '_ {
     let step = min_gap.max(STONE_SHADOW_CELLS + 1);
     windows(strip, i, j, wheelbase, step).filter_map(move |w| line_under_stones(w, r))
+}
+
+/// The slope |dz/dx| of the ground a fall `strip[i..=j]` lands on, when the fall is
+/// under a wheel radius `r` measured from that ground: the cells from `j` on, seen
+/// whole and contiguous over up to half a `wheelbase` (at least
+/// [`FOOT_LEVEL_MIN_CELLS`]), lie on one line within rough ground's spread
+/// ([`ROUGH_LINE_RMS_M`]) less steep than the limit (`tan_max`), and no cell from `i`
+/// to `j` stands a wheel radius over that line carried back, nor has its highest
+/// point ([`StripCell::high`]) a wheel radius and [`UNSEEN_FOOT_MARGIN_M`] over it
+/// (as [`line_under_stones`] asks of a stone). `None` otherwise. A pebble on a
+/// descent: the wheel comes down its back onto the descent, a fall of under a wheel
+/// radius; measured between cells, the descent's own fall over the few cells past
+/// the pebble adds to it (a 6 cm boulder 0.6 m down an 18° descent fell 11.5 cm
+/// over 0.15 m, a `step`). A step down past a stone, or a stone on an edge, lands
+/// on ground a step lower, and the cells before it stand over that ground's line
+/// by the step. Rises have [`stone_windows`] instead: a window on one line with the
+/// stone left out.
+fn fall_onto_line(
+    strip: &[StripCell],
+    i: usize,
+    j: usize,
+    (wheelbase, r, tan_max): (f32, f32, f32),
+) -> Option<f32> {
+    let end = reach_on(strip, j, 1, (strip[j].x, 0.5 * wheelbase));
+    let ground = &strip[j..=end];
+    if ground.len() < FOOT_LEVEL_MIN_CELLS || ground.iter().any(|c| c.past) {
+        return None;
+    }
+    let (line, rms) = line_fit(ground.iter().map(|c| (c.x, c.wheel)))?;
+    let slope = line.a.abs() as f32;
+    let under_r = strip[i..j].iter().all(|c| {
+        let on_line = line.z(f64::from(c.x), 0.0) as f32;
+        c.wheel - on_line < r && c.high - on_line < r + UNSEEN_FOOT_MARGIN_M
+    });
+    (rms <= f64::from(ROUGH_LINE_RMS_M) && slope < tan_max && under_r).then_some(slope)
 }
 
 /// Longest hole a [`stone_windows`] window steps over, cells: the shadow a stone under
@@ -903,6 +943,41 @@ mod tests {
             }),
         ] {
             assert!(!h.is_empty());
+        }
+    }
+
+    /// A descent of `g` degrees from 0.2 m with a flat-topped stone `h` high (its top
+    /// 10 cm across, its flanks 4 cm wide) 0.55 m down it, centred at 0.75 m: heights
+    /// at `x` metres along the strip.
+    fn stone_on_a_descent(h: f32, g: f32) -> impl Fn(f32) -> f32 {
+        move |x: f32| {
+            let descent = -g.to_radians().tan() * (x - 0.2).max(0.0);
+            let d = (x - 0.75).abs();
+            descent + h * ((0.09 - d) / 0.04).clamp(0.0, 1.0)
+        }
+    }
+
+    #[test]
+    fn a_fall_from_a_stone_under_a_wheel_radius_onto_a_climbable_descent_is_descended() {
+        // The descent's fall past the stone adds to the stone's back: within three
+        // cells the wheel comes down more than its radius, steeper than the limit, as
+        // off a step. But the ground it lands on is a 20° line, and the stone stands
+        // under a wheel radius over it.
+        let seen = stone_on_a_descent(0.08, 20.0);
+        assert!(seen(0.8) - seen(0.95) > 0.11);
+        assert!(hazards_on(&seen).is_empty(), "{:?}", hazards_on(&seen));
+        // Lower ground past it (a 12 cm step down 0.25 m past the stone), a ledge 12 cm
+        // over the descent's line (the strip seen from its top on, level there, then
+        // falling off the stone's back), and a descent over the limit stop.
+        let step_down = |x: f32| seen(x) - if x > 1.02 { 0.12 } else { 0.0 };
+        let tall_from_top = |x: f32| stone_on_a_descent(0.12, 20.0)(x.max(0.7));
+        let steep = stone_on_a_descent(0.08, 32.0);
+        for (name, h) in [
+            ("step down", hazards_on(step_down)),
+            ("tall", hazards_on(tall_from_top)),
+            ("steep", hazards_on(steep)),
+        ] {
+            assert!(!h.is_empty(), "{name}");
         }
     }
 

@@ -4,8 +4,8 @@
 use nalgebra::Vector3;
 
 use super::hidden::BLIND_FIT_M;
-use super::{line_fit, plane_fit, Frame, Region, ROUGH_LINE_RMS_M};
-use crate::analysis::plane::PlaneFit;
+use super::{line_fit, plane_fit, Frame, Region, ROUGH_LINE_RMS_M, UNSEEN_FOOT_MARGIN_M};
+use crate::analysis::plane::{Plane, PlaneFit};
 use crate::analysis::visibility;
 use crate::grid::Cell;
 use crate::verdict::{Hazard, HazardKind, Verdict};
@@ -19,7 +19,10 @@ use crate::verdict::{Hazard, HazardKind, Verdict};
 ///   seen from afar gives few points per cell, not none because of a hole.
 /// - A gap after seen ground with nothing seen beyond it, or with ground beyond it
 ///   more than a wheel radius below the ground before it (its last cell, that
-///   cell's slope continued, and the line through the last cells), is a drop-off.
+///   cell's slope continued, and the line through the last cells), is a drop-off;
+///   measured against a descending line the ground beyond lies on, the last cells
+///   decide both ways: a stone under a wheel radius on that line casts a shadow,
+///   one standing a wheel radius over it has a fall behind ([`judge_gap`]).
 /// - A gap with ground beyond it at a climbable level is the shadow of a low step
 ///   down when that ground explains it (the line of sight to the gap at the far
 ///   ground's height passes below the near edge); otherwise it is unknown ground.
@@ -60,6 +63,8 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         // The last seen cells (x, z): the ground before a gap and its slope.
         let mut before = Recent::default();
         let mut run: Option<(usize, usize)> = None; // (first ix, length)
+                                                    // The first row of a shadow met since the last seen cell.
+        let mut shade: Option<usize> = None;
         for ix in 0..=s.nx {
             let c = (ix < s.nx).then(|| s.cell(ix, iy));
             let seen_here = c.is_some_and(|c| f.seen[c] && !spilt(c));
@@ -72,8 +77,11 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     && f.cells[c].n >= f.cfg.analysis.min_points_per_cell
             });
             if seen_here || range_end || ix == s.nx {
+                let shade_from = shade.take();
+                let mut judged = false;
                 if let Some((start, len)) = run.take() {
                     if len >= min_run {
+                        judged = true;
                         let after = c.filter(|_| seen_here || range_end).map(ground);
                         let kind = if before.last().is_none()
                             && seen_here
@@ -81,6 +89,11 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                         {
                             None
                         } else {
+                            // The ground past the gap, seen whole, as one line.
+                            let landing = seen_here
+                                .then(|| line_past(f, iy, ix, ground, LANDING_M, true))
+                                .flatten();
+                            let after = after.map(|at| (at, landing));
                             judge_gap(f, iy, start, ix, before, after, r, tan_max)
                         };
                         if let Some(kind) = kind {
@@ -92,9 +105,20 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                         }
                     }
                 }
+                if let (Some(from), Some(c), false) = (shade_from, c, judged) {
+                    // A shadow behind a tall stone's top on a descent: its fall.
+                    if seen_here && fall_behind(f, iy, ix, &before, ground(c), ground, tan_max) {
+                        verdict.add_hazard(Hazard {
+                            kind: HazardKind::DropOff,
+                            side,
+                            distance_m: s.origin[0] + from as f32 * s.voxel_m,
+                        });
+                    }
+                }
                 if let Some(c) = c.filter(|_| seen_here) {
                     let (x, z) = ground(c);
-                    before.push(x, z);
+                    // A stone's apex cell reads its mean low: its highest point too.
+                    before.push(x, z, f.cells[c].peak.max(z));
                 }
                 continue;
             }
@@ -104,6 +128,9 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             }
             if f.shadowed[c] || f.beyond[c] {
                 // A shadow or past the horizon: hidden by what is in front.
+                if f.shadowed[c] {
+                    shade.get_or_insert(ix);
+                }
                 run = None;
                 continue;
             }
@@ -147,12 +174,7 @@ fn below_view(
 ) -> bool {
     let s = f.spec;
     let x0 = s.x_centre(end);
-    let near = || {
-        (end..s.nx)
-            .take_while(|&ix| f.seen[s.cell(ix, iy)] && s.x_centre(ix) <= x0 + BLIND_FIT_M)
-            .map(|ix| ground(s.cell(ix, iy)))
-    };
-    let Some((line, rms)) = line_fit(near()) else {
+    let Some((line, rms, _)) = line_past(f, iy, end, ground, BLIND_FIT_M, false) else {
         return false;
     };
     let (k, z0) = (line.a as f32, line.z(f64::from(x0), 0.0) as f32);
@@ -169,10 +191,111 @@ fn below_view(
         })
 }
 
+/// The least-squares line z = a·x + c (as a plane, b = 0) through strip `iy`'s seen
+/// cells from row `end` on, up to `reach_m` metres past its centre (`whole`: seen
+/// whole, not past the horizon, up to the first that is not), at their heights
+/// `ground` gives (x, z), the RMS of their heights about it, metres, and how many
+/// they are; `None` with no two distinct x.
+fn line_past(
+    f: &Frame,
+    iy: usize,
+    end: usize,
+    ground: impl Fn(usize) -> (f32, f32),
+    reach_m: f32,
+    whole: bool,
+) -> Option<LinePast> {
+    let s = f.spec;
+    let x0 = s.x_centre(end);
+    let cells = (end..s.nx).take_while(|&ix| {
+        let c = s.cell(ix, iy);
+        f.seen[c] && !(whole && f.past[c]) && s.x_centre(ix) <= x0 + reach_m
+    });
+    plane_fit(cells.map(|ix| {
+        let (x, z) = ground(s.cell(ix, iy));
+        (x, 0.0, z)
+    }))
+}
+
+/// The ground past a gap or a shadow (`landing`, [`line_past`]) as a climbable line
+/// (over [`LANDING_MIN_CELLS`] or more, within rough ground's spread, under the slope
+/// limit `tan_max`), and how far the cells seen in the last [`STONE_BEFORE_M`]
+/// before it stand over it, carried back, metres: the most of their heights and of
+/// their highest points less [`UNSEEN_FOOT_MARGIN_M`] (the margin for a top not seen
+/// whole), less the line's own spread (rough ground's, in the stone's favour).
+fn stands_over(before: &Recent, landing: LinePast, tan_max: f32) -> Option<(Plane, f32)> {
+    let (line, rms, n) = landing;
+    if n < LANDING_MIN_CELLS || rms > f64::from(ROUGH_LINE_RMS_M) || line.a.abs() as f32 >= tan_max
+    {
+        return None;
+    }
+    let over = before
+        .within(STONE_BEFORE_M)
+        .map(|(x, z, top)| {
+            let on_line = line.z(f64::from(x), 0.0) as f32;
+            (z - on_line).max(top - on_line - UNSEEN_FOOT_MARGIN_M)
+        })
+        .fold(f32::NEG_INFINITY, f32::max);
+    Some((line, over - rms as f32))
+}
+
+/// Whether the ground past a gap or a shadow, first seen at height `za`, lies more
+/// than a wheel radius `r` under the last cell before it (`zb`, metres) on a
+/// descending line ([`stands_over`]'s `landing`) that a cell before it stands a wheel
+/// radius or more over: a fall off a tall stone's back. For wheel tracks only: the
+/// belly band clears a stone by its clearance (a 20 cm rock under it, its shadow
+/// behind it, is a go).
+fn tall_back(zb: f32, za: f32, landing: Option<(Plane, f32)>, r: f32) -> bool {
+    za < zb - r && landing.is_some_and(|(line, over)| line.a < 0.0 && over >= r)
+}
+
+/// Whether a shadow in strip `iy` ending at row `end`, whose first seen cell's ground
+/// is `(_, za)` (`ground` gives each cell's), lies behind cells (`before`) one of
+/// which stands a wheel radius or more over the descending ground past it
+/// ([`tall_back`]). The shadow explains the unseen cells, not the fall: a 15.7 cm
+/// cone 0.39 m down an 11° descent, its apex cell read 14.5 cm over the descent past
+/// it, hid the cells behind it from a Kinect v2 0.6 m high, and went (`sweep --
+/// natural 100 4304 random 12` #51).
+fn fall_behind(
+    f: &Frame,
+    iy: usize,
+    end: usize,
+    before: &Recent,
+    (_, za): (f32, f32),
+    ground: impl Fn(usize) -> (f32, f32),
+    tan_max: f32,
+) -> bool {
+    let r = f.cfg.rover.wheel_radius_m as f32;
+    let Some((_, zb)) = before.last() else {
+        return false;
+    };
+    if f.region[iy] == Region::Belly {
+        return false; // the belly band clears a stone by its clearance
+    }
+    let landing = line_past(f, iy, end, ground, LANDING_M, true)
+        .and_then(|l| stands_over(before, l, tan_max));
+    tall_back(zb, za, landing, r)
+}
+
+/// A line through a strip's cells ([`line_past`]): the line (a plane, b = 0), the RMS
+/// of the cells' heights about it, metres, and how many they are.
+type LinePast = (Plane, f64, usize);
+
+/// How far past a gap [`judge_gap`] takes the ground it lands on as a line, metres.
+const LANDING_M: f32 = 0.3;
+
+/// Fewest cells of that ground for its line.
+const LANDING_MIN_CELLS: usize = 4;
+
+/// How far back from the last cell before a gap [`judge_gap`] takes the cells of a
+/// stone that stands on the ground past it, metres: a pebble's width.
+const STONE_BEFORE_M: f32 = 0.2;
+
 /// The last few seen cells of a strip, oldest first (a fixed ring: no allocation).
 #[derive(Debug, Default, Clone, Copy)]
 struct Recent {
     cells: [(f32, f32); Recent::N],
+    /// Each cell's highest point ([`Cell::peak`]), or its height if higher, metres.
+    tops: [f32; Recent::N],
     len: usize,
 }
 
@@ -181,17 +304,30 @@ impl Recent {
     /// Cells farther back than this from the last one do not count for the slope.
     const SPAN_M: f32 = 0.4;
 
-    fn push(&mut self, x: f32, z: f32) {
+    fn push(&mut self, x: f32, z: f32, top: f32) {
         if self.len == Self::N {
             self.cells.copy_within(1.., 0);
+            self.tops.copy_within(1.., 0);
             self.len -= 1;
         }
         self.cells[self.len] = (x, z);
+        self.tops[self.len] = top;
         self.len += 1;
     }
 
     fn last(&self) -> Option<(f32, f32)> {
         self.len.checked_sub(1).map(|i| self.cells[i])
+    }
+
+    /// The recent cells within `m` metres before the last one (x, z, top), oldest
+    /// first.
+    fn within(&self, m: f32) -> impl Iterator<Item = (f32, f32, f32)> + '_ {
+        let xl = self.last().map_or(0.0, |(x, _)| x);
+        self.cells[..self.len]
+            .iter()
+            .zip(&self.tops)
+            .map(|(&(x, z), &top)| (x, z, top))
+            .filter(move |&(x, _, _)| xl - x <= m)
     }
 
     /// The least-squares line z = slope·x + c through every recent cell, as its
@@ -361,8 +497,28 @@ const ACROSS_OFF_FOOT_SHARE: f32 = 0.1;
 /// take it as level, with no part of the fall in it.
 const ACROSS_LEVEL_SHARE: f32 = 0.1;
 
-/// What the unseen run of cells `start..end` in strip `iy` is, given the two seen
-/// cells before it and the first seen cell after it (x, z).
+/// What the unseen run of cells `start..end` in strip `iy` is, given the seen cells
+/// before it and the first seen cell after it (x, z) with the line through the
+/// ground seen whole from it on ([`line_past`]).
+///
+/// Ground past the gap a wheel radius below the ground before it is a drop-off, unless
+/// that ground lies on a climbable line (over [`LANDING_MIN_CELLS`] or more, within
+/// rough ground's spread) which every cell seen in the last [`STONE_BEFORE_M`] before
+/// the gap stands less than a wheel radius over, carried back (a cell's highest point
+/// less [`UNSEEN_FOOT_MARGIN_M`], and the line's own spread, counting too): then those
+/// cells are a stone on the ground the gap's far side continues, the fall off its
+/// back is under a wheel radius, and the gap is its shadow when the line of sight to
+/// every unseen cell at that line's height passes under something seen (else unknown
+/// ground). A 9 cm boulder 0.3 m down a 12° descent hid 0.15 m behind it from the
+/// default camera, and the ground past that, on the descent, stood 14 cm under its
+/// top: a `drop_off`. On flat ground such a stone's shadow was always judged so
+/// (the ground past it within a wheel radius of its top); a descent adds its fall.
+/// Conversely, where a cell before the gap stands a wheel radius or more over a
+/// descending line past it, the fall is a drop-off even though the ground past lies
+/// on the line of the cells before (the descent continued): a 16 cm cone 0.6 m down
+/// a 25° descent, its apex cell's mean 9 cm over the descent and its highest point
+/// 14 cm, and the descent past its shadow on the line of the ground before it, was a
+/// go.
 #[allow(clippy::too_many_arguments)]
 fn judge_gap(
     f: &Frame,
@@ -370,7 +526,7 @@ fn judge_gap(
     start: usize,
     end: usize,
     before: Recent,
-    after: Option<(f32, f32)>,
+    after: Option<((f32, f32), Option<LinePast>)>,
     r: f32,
     tan_max: f32,
 ) -> Option<HazardKind> {
@@ -378,6 +534,9 @@ fn judge_gap(
     let Some((xb, zb)) = before.last() else {
         return Some(HazardKind::Unknown);
     };
+    // A wheel track's strip: the belly band clears what stands under a wheel radius
+    // and more (a rock under it is judged by its clearance).
+    let track = f.region[iy] != Region::Belly;
     // The slope of the ground before the gap, only up to passable: a steeper face is
     // judged by the step and slope test.
     let k = before.slope().clamp(-tan_max, tan_max);
@@ -418,6 +577,10 @@ fn judge_gap(
         unseen.clone().all(|j| between_rows(f, j, iy, ground(j), r))
             || sparse_ground(f, iy, unseen.clone().map(|j| (j, ground(j))))
     };
+    let landing = after
+        .and_then(|(_, landing)| landing)
+        .and_then(|l| stands_over(&before, l, tan_max));
+    let after = after.map(|(at, _)| at);
     match after {
         None => {
             // Nothing seen beyond: a drop-off, unless the ground before the gap,
@@ -435,8 +598,25 @@ fn judge_gap(
             let hidden = hidden_at(&predicted) || on_line.is_some_and(|z| hidden_at(&z));
             (!hidden && !bumps() && !sampled_out() && !across()).then_some(HazardKind::DropOff)
         }
-        Some((xa, za)) if za < zb - r && za < predicted(xa) - r && below_line(xa, za) => {
-            Some(HazardKind::DropOff)
+        // A fall of more than a wheel radius, by the cells' heights, from a cell standing
+        // a wheel radius over the descent past the gap: a tall stone's back.
+        Some((_, za)) if track && tall_back(zb, za, landing, r) => Some(HazardKind::DropOff),
+        Some((xa, za))
+            if za < zb - r
+                && za < predicted(xa) - r
+                && (below_line(xa, za) || landing.is_some_and(|(_, over)| over >= r)) =>
+        {
+            match landing {
+                Some((line, over)) if over < r => {
+                    let on_line = |j: usize| line.z(f64::from(s.x_centre(j)), 0.0) as f32;
+                    let shadowed = unseen
+                        .clone()
+                        .all(|j| visibility::explained(f, j, iy, on_line(j)));
+                    (!shadowed && !bumps() && !sampled_out() && !across())
+                        .then_some(HazardKind::Unknown)
+                }
+                _ => Some(HazardKind::DropOff),
+            }
         }
         Some((_, za)) => {
             let all_shadowed = unseen.clone().all(|j| visibility::explained(f, j, iy, za));
