@@ -62,9 +62,9 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         let spilt = |c: usize| track && !f.past[c] && !surface[c].is_finite();
         // The last seen cells (x, z): the ground before a gap and its slope.
         let mut before = Recent::default();
-        let mut run: Option<(usize, usize)> = None; // (first ix, length)
-                                                    // The first row of a shadow met since the last seen cell.
+        // The first row of a shadow met since the last seen cell.
         let mut shade: Option<usize> = None;
+        let mut run: Option<(usize, usize)> = None; // (first ix, length)
         for ix in 0..=s.nx {
             let c = (ix < s.nx).then(|| s.cell(ix, iy));
             let seen_here = c.is_some_and(|c| f.seen[c] && !spilt(c));
