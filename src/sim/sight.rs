@@ -202,12 +202,19 @@ mod tests {
     /// top 45° − atan((0.5 − 2/480) · 2 tan 21.5°) = 23.66°. A 0.25 m rock's apex is
     /// 0.55 m under the camera, so it is in view nearer than 0.55 m / tan 23.66° =
     /// 1.255 m, and out of it farther.
-    #[test]
-    fn an_apex_above_the_image_s_top_edge_is_unseen() {
+    /// The default config pitched 45°, and how far below the horizon its third row
+    /// from the top looks, radians (the hand calculation above).
+    fn pitched_45() -> (Config, f64) {
         let mut c = Config::default();
         c.mount.pitch_deg = 45.0;
         let half = 21.5f64.to_radians();
         let row2 = 45f64.to_radians() - ((0.5 - 2.0 / 480.0) * 2.0 * half.tan()).atan();
+        (c, row2)
+    }
+
+    #[test]
+    fn an_apex_above_the_image_s_top_edge_is_unseen() {
+        let (c, row2) = pitched_45();
         let edge = 0.55 / row2.tan();
         assert!((edge - 1.255).abs() < 0.001, "{edge}");
         assert_eq!(unseen_top(&rock(edge - 0.03, 0.0, 0.25), &c), None);
@@ -245,10 +252,7 @@ mod tests {
         // 23.66° down. A 0.1 m step's upper ground is 0.7 m under the camera, so it
         // is in view nearer than 0.7 m / tan 23.66° = 1.597 m; its top is taken a
         // voxel (0.05 m) past the edge, so the edge may lie out to 1.547 m.
-        let mut c = Config::default();
-        c.mount.pitch_deg = 45.0;
-        let half = 21.5f64.to_radians();
-        let row2 = 45f64.to_radians() - ((0.5 - 2.0 / 480.0) * 2.0 * half.tan()).atan();
+        let (c, row2) = pitched_45();
         let edge = 0.7 / row2.tan() - c.analysis.voxel_m;
         assert!((edge - 1.547).abs() < 0.001, "{edge}");
         let step = |x_m: f64, height_m: f64, extent: Extent| {
