@@ -1,7 +1,7 @@
 //! Steps and slopes along one wheel track's strip: where the wheel rests on each cell,
 //! and whether what it climbs is a step, a slope too steep, or ground it crosses.
 
-use super::{line_fit, Region, StripCell, ROUGH_LINE_RMS_M, UNSEEN_FOOT_MARGIN_M};
+use super::{line_fit, stone_height, Region, StripCell, ROUGH_LINE_RMS_M, UNSEEN_FOOT_MARGIN_M};
 use crate::analysis::plane::{Plane, PlaneFit};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
@@ -471,11 +471,17 @@ fn fall_onto_line(
     }
     let (line, rms) = line_fit(ground.iter().map(|c| (c.x, c.wheel)))?;
     let slope = line.a.abs() as f32;
-    let under_r = strip[i..j].iter().all(|c| {
-        let on_line = line.z(f64::from(c.x), 0.0) as f32;
-        c.wheel - on_line < r && c.high - on_line < r + UNSEEN_FOOT_MARGIN_M
-    });
+    let under_r = under_a_wheel(&strip[i..j], &line, r);
     (rms <= f64::from(ROUGH_LINE_RMS_M) && slope < tan_max && under_r).then_some(slope)
+}
+
+/// Whether every cell of `cells` stands under a wheel radius `r` over `line`
+/// ([`stone_height`], from its wheel height and highest point).
+fn under_a_wheel(cells: &[StripCell], line: &Plane, r: f32) -> bool {
+    cells.iter().all(|c| {
+        let on_line = line.z(f64::from(c.x), 0.0) as f32;
+        stone_height(c.wheel, c.high, on_line) < r
+    })
 }
 
 /// Longest hole a [`stone_windows`] window steps over, cells: the shadow a stone under
@@ -536,11 +542,7 @@ fn line_under_stones(run: &[StripCell], r: f32) -> Option<f32> {
             .filter(move |(k, _)| out & (1 << k) == 0);
         let (line, rms) = line_fit(kept.clone().map(|(_, c)| (c.x, c.wheel)))?;
         if rms <= f64::from(ROUGH_LINE_RMS_M) {
-            let under_r = run.iter().all(|c| {
-                let on_line = line.z(f64::from(c.x), 0.0) as f32;
-                c.wheel - on_line < r && c.high - on_line < r + UNSEEN_FOOT_MARGIN_M
-            });
-            return under_r.then_some(line.a.abs() as f32);
+            return under_a_wheel(run, &line, r).then_some(line.a.abs() as f32);
         }
         let (k, above) = kept
             .map(|(k, c)| (k, off(&line, c)))

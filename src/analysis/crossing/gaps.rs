@@ -4,7 +4,7 @@
 use nalgebra::Vector3;
 
 use super::hidden::BLIND_FIT_M;
-use super::{line_fit, plane_fit, Frame, Region, ROUGH_LINE_RMS_M, UNSEEN_FOOT_MARGIN_M};
+use super::{line_fit, plane_fit, stone_height, Frame, Region, ROUGH_LINE_RMS_M};
 use crate::analysis::plane::{Plane, PlaneFit};
 use crate::analysis::visibility;
 use crate::grid::Cell;
@@ -219,9 +219,9 @@ fn line_past(
 /// The ground past a gap or a shadow (`landing`, [`line_past`]) as a climbable line
 /// (over [`LANDING_MIN_CELLS`] or more, within rough ground's spread, under the slope
 /// limit `tan_max`), and how far the cells seen in the last [`STONE_BEFORE_M`]
-/// before it stand over it, carried back, metres: the most of their heights and of
-/// their highest points less [`UNSEEN_FOOT_MARGIN_M`] (the margin for a top not seen
-/// whole), less the line's own spread (rough ground's, in the stone's favour).
+/// before it stand over it, carried back, metres: the most of their
+/// [`stone_height`]s over it, less the line's own spread (rough ground's, in the
+/// stone's favour).
 fn stands_over(before: &Recent, landing: LinePast, tan_max: f32) -> Option<(Plane, f32)> {
     let (line, rms, n) = landing;
     if n < LANDING_MIN_CELLS || rms > f64::from(ROUGH_LINE_RMS_M) || line.a.abs() as f32 >= tan_max
@@ -230,10 +230,7 @@ fn stands_over(before: &Recent, landing: LinePast, tan_max: f32) -> Option<(Plan
     }
     let over = before
         .within(STONE_BEFORE_M)
-        .map(|(x, z, top)| {
-            let on_line = line.z(f64::from(x), 0.0) as f32;
-            (z - on_line).max(top - on_line - UNSEEN_FOOT_MARGIN_M)
-        })
+        .map(|(x, z, top)| stone_height(z, top, line.z(f64::from(x), 0.0) as f32))
         .fold(f32::NEG_INFINITY, f32::max);
     Some((line, over - rms as f32))
 }
@@ -504,8 +501,8 @@ const ACROSS_LEVEL_SHARE: f32 = 0.1;
 /// Ground past the gap a wheel radius below the ground before it is a drop-off, unless
 /// that ground lies on a climbable line (over [`LANDING_MIN_CELLS`] or more, within
 /// rough ground's spread) which every cell seen in the last [`STONE_BEFORE_M`] before
-/// the gap stands less than a wheel radius over, carried back (a cell's highest point
-/// less [`UNSEEN_FOOT_MARGIN_M`], and the line's own spread, counting too): then those
+/// the gap stands less than a wheel radius over, carried back (its [`stone_height`]
+/// less the line's own spread): then those
 /// cells are a stone on the ground the gap's far side continues, the fall off its
 /// back is under a wheel radius, and the gap is its shadow when the line of sight to
 /// every unseen cell at that line's height passes under something seen (else unknown

@@ -534,6 +534,17 @@ const ROUGH_SPREAD_M: f32 = 0.015;
 /// seen 12.4 cm over the rover's ground in one inner strip and 14.3 cm in the next,
 /// was a go (`sweep -- families 100 6801 random` #7).
 pub(crate) const UNSEEN_FOOT_MARGIN_M: f32 = 0.01;
+/// How far a cell stands over the ground under it (`on_line`, metres) as a stone the
+/// wheel must climb, metres: the more of its height `z` and of its highest point `top`
+/// less [`UNSEEN_FOOT_MARGIN_M`]. A cell's mean may read a stone's top several
+/// centimetres low; its highest point, which rough ground's bumps and depth noise lift
+/// (a 9 cm pebble's to 11-12 cm over its line), gets the margin. A wheel of radius `r`
+/// climbs the stone when this is under `r` (`climb`'s stones on a line and falls onto
+/// one, `gaps`' cells before a gap or a shadow).
+fn stone_height(z: f32, top: f32, on_line: f32) -> f32 {
+    (z - on_line).max(top - on_line - UNSEEN_FOOT_MARGIN_M)
+}
+
 /// Whether `verdict` already accounts for `unknown` ground `x` metres out on `side`
 /// ([`steep_exit`], [`side_exit`]): a hazard on that side, or one at least as near on
 /// any side, stops the rover there first.
