@@ -3612,12 +3612,23 @@ fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_s
     // surface. So were the `step`s where the view ends in two frames of D435-like
     // cameras: a 2.5 cm side whose cells' means sink under the ramp's top the higher it
     // stands (`bevelled 100 7609 random 9` #17, clean), a 5.4 cm side filling the
-    // edge strip of a 21.6° ramp (`bevelled 60 9209 random` #20, noisy).
+    // edge strip of a 21.6° ramp (`bevelled 60 9209 random` #20, noisy). Past the
+    // horizon, where the ramp's top has left the image and the edge strip still sees
+    // the side's lower part, a strip read by its means keeps reading them: a 4.3 cm
+    // side of a 23.4° ramp, seen by a Kinect v2 1.1 m high, showed a face along the
+    // strip in the first cell past the horizon, and the ground beside it, the ramp's
+    // top, stood 17 cm over the mean read just before: a `step` where the view ends
+    // (`bevelled 100 4412 random 9` #41, noisy).
     let mut kinect = kinect_v2(mounted(
         [0.285_513_211, -0.069_689_588, 0.715_517_222],
         [6.184_063_155, 35.951_418_994, -6.184_866_987],
     ));
     kinect.camera.min_range_m = 0.325_320_214;
+    let mut kinect_high = kinect_v2(mounted(
+        [0.073_881_747, 0.081_656_478, 1.101_794_845],
+        [-7.995_590_167, 33.679_699_176, -5.496_346_776],
+    ));
+    kinect_high.camera.min_range_m = 0.478_332_100;
     let low_qvga = qvga(
         mounted(
             [0.091_587_082, -0.003_204_170, 0.838_157_463],
@@ -3695,6 +3706,15 @@ fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_s
             ],
             5,
             9_209_020,
+        ),
+        (
+            kinect_high,
+            [
+                (0.625_679_061, 23.390_705_188, 0.043_270_452),
+                (1.180_413_538, 17.209_565_064, 0.047_484_853),
+            ],
+            3,
+            4_412_041,
         ),
     ] {
         let left = Extent::Bevelled {

@@ -122,7 +122,7 @@ pub fn steps_and_slopes(
                 let mut across = !past && slopes_across(cell, y_mid, vs);
                 let z = if across {
                     cell.z
-                } else if past && along.is_none() {
+                } else if past && (along.is_none() || sloped) {
                     beyond_horizon(cell, fringe, sloped)
                 } else {
                     // Beside a face along the strip, its ground ([`ground_along`]);
@@ -404,12 +404,14 @@ fn continuing(
 }
 
 /// The height a strip reads on a seen cell past the horizon with no face along the
-/// strip, metres: the floor beside the fringe of the wall seen before (`fringe`,
-/// [`floor_beside_fringe`]); where the strip read the mean up to the horizon
-/// (`sloped`), the mean of what is seen of the cell (its top is the slope's high side,
-/// which stood 19 cm over the strip and made a `step`: `sweep -- bevelled 60 904
-/// default 0` #23, #54); else its top, or its mean if higher: a lower bound on its
-/// height.
+/// strip, or read by its means up to the horizon, metres: the floor beside the fringe
+/// of the wall seen before (`fringe`, [`floor_beside_fringe`]); where the strip read
+/// the mean up to the horizon (`sloped`), the mean of what is seen of the cell (its
+/// top is the slope's high side, which stood 19 cm over the strip and made a `step`:
+/// `sweep -- bevelled 60 904 default 0` #23, #54), a face along the strip or not (the
+/// ground beside a ramp's sloping side, its top, stood 17 cm over the mean read just
+/// before the horizon, a `step`: `sweep -- bevelled 100 4412 random 9` #41, noisy);
+/// else its top, or its mean if higher: a lower bound on its height.
 fn beyond_horizon(cell: &Cell, fringe: bool, sloped: bool) -> f32 {
     if fringe {
         floor_beside_fringe(cell)
