@@ -260,6 +260,32 @@ fn a_trench_wall_the_view_ends_along_is_no_step_but_a_post_where_it_ends_is() {
         let f = v.feature.expect("a go has a feature");
         assert_eq!(f.workcase, 10, "{f:?}");
     }
+    // A 320×240 camera 0.92 m high rolled 6.8°, pitched 43° and yawed 8.8°, a -13°
+    // descent under the right track met at -37° (`oblique 100 4203 random` #26,
+    // noisy): the image's top corner cuts the outermost strip's cell 2.38 m out to 9
+    // of the floor's points, none of the wall's, and the next cell's top, the wall's
+    // fringe, stood 11 cm over the floor. The wall runs on past the cell that hides
+    // it; a post on the floor where it runs on, on the strip's centre line, bounds it.
+    let c = qvga(
+        mounted(
+            [0.197_845_527, -0.088_761_614, 0.920_332_898],
+            [6.786_652_837, 43.165_859_325, 8.812_133_735],
+        ),
+        0.458_922_229,
+    );
+    let (toe, g) = (1.516_773_265, -12.976_267_917);
+    let descent = || vec![Element::ramp(toe, -0.45, g, -37.264_068_700, RIGHT_TRACK)];
+    for v in analyse_views(descent(), &c, [None, Some(4_203_026)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert_eq!(v.feature.map(|f| f.workcase), Some(10));
+    }
+    for x in [2.43, 2.48] {
+        let mut scene = descent();
+        scene.push(block_at(x, -0.675, 0.04, 0.03, 0.18));
+        for v in analyse_views(scene, &c, [None, Some(4_203_026)]) {
+            assert_ne!(v.decision, Decision::Go, "post at {x}: {:?}", v.feature);
+        }
+    }
 }
 
 #[test]

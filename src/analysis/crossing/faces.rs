@@ -35,6 +35,19 @@ pub(super) fn wall_goes_on(cell: &Cell, wall: Option<[f32; 3]>, y_mid: f32, vs: 
         })
 }
 
+/// Whether a cell past the horizon shows nothing of the face along its strip seen
+/// before (`wall`, as [`wall_goes_on`] takes it) and nothing that bounds the strip
+/// over it: its top voxel lies off the strip's side (within [`FACE_OFF_VOXELS`] of its
+/// centre line `y_mid`) and no higher than the face's top (within rough ground's
+/// spread, [`ROUGH_SPREAD_M`]). The face may then run on past it, up to
+/// [`WALL_REACH_M`] from the last cell that showed it: a cell the image's top corner
+/// cuts to a few of the floor's points hides it, and the next cell's top, the fringe
+/// of the outer ground's wall on the corridor's edge, stood 11 cm over the floor of a
+/// one-track descent, a `step` (`sweep -- oblique 100 4203 random` #26, noisy).
+pub(super) fn clear_of_wall(cell: &Cell, [_, top, _]: [f32; 3], y_mid: f32, vs: f32) -> bool {
+    (cell.top_xy[1] - y_mid).abs() < FACE_OFF_VOXELS * vs && cell.top <= top + ROUGH_SPREAD_M
+}
+
 /// Whether a cell seen whole holds the fringe of a face along its strip standing more
 /// than a wheel radius `r` above its ground `z`: one surface (the face's points are
 /// under [`crate::grid::SURFACE_MIN_SHARE`] of the cell's, `crest` is `foot`), and a

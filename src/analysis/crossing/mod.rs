@@ -17,8 +17,8 @@ pub use belly::belly;
 pub(crate) use belly::{median, track_medians};
 use climb::{strip_hazards, wheel_heights, STEP_REACH_VOXELS};
 use faces::{
-    beside_slope, cross_slope, floor_beside_fringe, fringe_of_wall, slopes_across, two_levels,
-    unresolved_ground, wall_goes_on,
+    beside_slope, clear_of_wall, cross_slope, floor_beside_fringe, fringe_of_wall, slopes_across,
+    two_levels, unresolved_ground, wall_goes_on,
 };
 pub(crate) use faces::{ground_beside_face, unresolved_face_along};
 pub use gaps::{gaps, GRAZING_DEG};
@@ -144,6 +144,7 @@ pub fn steps_and_slopes(
                 wall = match (along, wall) {
                     (Some(_), _) => Some([cell.x, highest, cell.top_xy[1]]),
                     (None, Some([_, top, top_y])) if fringe => Some([cell.x, top, top_y]),
+                    (None, Some(w)) if past && clear_of_wall(cell, w, y_mid, vs) => Some(w),
                     (None, _) if !past && fringe_of_wall(cell, z, y_mid, r, vs) => {
                         Some([cell.x, highest, cell.top_xy[1]])
                     }
