@@ -107,7 +107,11 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 }
                 if let (Some(from), Some(c), false) = (shade_from, c, judged) {
                     // A shadow behind a tall stone's top on a descent: its fall.
-                    if seen_here && fall_behind(f, iy, ix, &before, ground(c), ground, tan_max) {
+                    let limits = (r, tan_max);
+                    if track
+                        && seen_here
+                        && fall_behind(f, iy, ix, &before, ground(c), ground, limits)
+                    {
                         verdict.add_hazard(Hazard {
                             kind: HazardKind::DropOff,
                             side,
@@ -251,7 +255,8 @@ fn tall_back(zb: f32, za: f32, landing: Option<(Plane, f32)>, r: f32) -> bool {
 /// ([`tall_back`]). The shadow explains the unseen cells, not the fall: a 15.7 cm
 /// cone 0.39 m down an 11° descent, its apex cell read 14.5 cm over the descent past
 /// it, hid the cells behind it from a Kinect v2 0.6 m high, and went (`sweep --
-/// natural 100 4304 random 12` #51).
+/// natural 100 4304 random 12` #51). For wheel tracks only, as [`tall_back`]: the
+/// caller asks it of track strips. `r` is the wheel radius, `tan_max` the slope limit.
 fn fall_behind(
     f: &Frame,
     iy: usize,
@@ -259,15 +264,11 @@ fn fall_behind(
     before: &Recent,
     (_, za): (f32, f32),
     ground: impl Fn(usize) -> (f32, f32),
-    tan_max: f32,
+    (r, tan_max): (f32, f32),
 ) -> bool {
-    let r = f.cfg.rover.wheel_radius_m as f32;
     let Some((_, zb)) = before.last() else {
         return false;
     };
-    if f.region[iy] == Region::Belly {
-        return false; // the belly band clears a stone by its clearance
-    }
     let landing = line_past(f, iy, end, ground, LANDING_M, true)
         .and_then(|l| stands_over(before, l, tan_max));
     tall_back(zb, za, landing, r)
