@@ -4591,3 +4591,33 @@ fn a_belly_rock_whose_top_is_seen_gets_its_verdict_and_one_whose_top_is_not_is_n
         "{seen:?} {unseen}"
     );
 }
+
+#[test]
+fn a_pit_whose_far_wall_rises_out_of_the_image_is_never_go() {
+    // A 0.49 m deep pit 0.4 m long under the left track, 2.14 m out, seen by a Kinect
+    // v1 0.81 m high pitched 40° and yawed 9.8° (`sweep -- edges 100 4505 random`
+    // #16): its near edge hides the floor, and the image's top edge cuts the far wall
+    // 5-15 cm down, all that is seen past the edge. Read at the wall's mean, 10 cm
+    // down, that was the lower ground of a low step down whose shadow the gap was: go,
+    // workcase 9. The wall rises out of the image from a foot at or under its lowest
+    // point, 15 cm down: more than a wheel radius.
+    let mut c = mounted([0.0210, 0.0598, 0.8062], [-0.1233, 40.2300, 9.8358]);
+    c.camera.min_range_m = 0.3881;
+    for (x, length, depth) in [
+        (2.1383, 0.3977, 0.4903),
+        (2.10, 0.40, 0.30),
+        (2.05, 0.45, 0.49),
+        (2.18, 0.35, 0.25),
+    ] {
+        let pit = [block_at(x, 0.45, length, 0.5, -depth)];
+        assert_never_go(&pit, &c, [4_505_016, 17], Side::Left);
+    }
+    // A pit under a wheel radius deep there is driven through.
+    for v in analyse_views(
+        vec![block_at(2.10, 0.45, 0.40, 0.5, -0.06)],
+        &c,
+        [None, Some(17)],
+    ) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+    }
+}

@@ -51,7 +51,7 @@ impl UnseenTop {
 /// whose top the camera cannot see. A stone's or rock's top is its apex (the
 /// terrain's height at its centre, with whatever lies under it); a block's is the
 /// near edge of its top face. A step up is taken band by band (each wheel track and
-/// the belly band, [`step_tops`]): its top there is its upper ground a voxel past
+/// the belly band, `step_tops`): its top there is its upper ground a voxel past
 /// `x_m`, in the middle of the part of the band it covers. It is out of view when it lies behind
 /// the camera, outside the image, in the image's top [`CUT_ROWS`] rows (where the
 /// analysis takes the view as cut), or outside the sensor's range `[min_range_m,

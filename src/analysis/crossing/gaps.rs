@@ -35,6 +35,12 @@ use crate::verdict::{Hazard, HazardKind, Verdict};
 ///   lower ground past a 0.42 m step down, seen only where it left a 3 m range,
 ///   proves the drop (`sweep -- edges 100 3305` #12 with `MAX_RANGE=3`), and a
 ///   ditch's far rim there leaves its floor unknown ground.
+/// - A gap ending at a cell past the horizon ([`Frame::past`]) is judged by that
+///   cell's lowest surface where it lies under the ground read: the image's top edge
+///   shows only the lower part of a face rising out of it, and the ground at the
+///   face's foot lies lower still (a 0.49 m pit's far wall, seen 5-15 cm down, read
+///   at its mean as a low step's lower ground, made the pit a go: `sweep -- edges
+///   100 4505 random` #16).
 ///
 /// A track cell's height is the surface its strip followed (`surface`, from
 /// [`steps_and_slopes`](super::steps_and_slopes); NaN elsewhere), other cells' their mean.
@@ -82,7 +88,14 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 if let Some((start, len)) = run.take() {
                     if len >= min_run {
                         judged = true;
-                        let after = c.filter(|_| seen_here || range_end).map(ground);
+                        let after = c.filter(|_| seen_here || range_end).map(|c| {
+                            let (x, z) = ground(c);
+                            // Past the horizon the cell shows only what lies under
+                            // the image's top edge: of a face rising out of it (a
+                            // pit's far wall), its lower part. The ground at its foot
+                            // lies at or under its lowest surface.
+                            (x, if f.past[c] { z.min(f.cells[c].low) } else { z })
+                        });
                         let kind = if before.last().is_none()
                             && seen_here
                             && below_view(f, iy, start, ix, ground, tan_max)
