@@ -55,6 +55,14 @@
 //! usual, and a go where a stop was due fails); a line before the last counts those
 //! frames, and with `ALL=1` a line `TOP #N ...` names each such obstacle.
 //!
+//! Where a scene drawn as climbable rises under the belly band high enough for the
+//! belly to strike it (`sim::clearance::belly_strike`: a ramp under one half of the
+//! corridor, its edge on the centre line, past 0.91 m high on the default rover), a
+//! stop whose every hazard lies in the belly band no nearer than `TOP_REACH_M` before
+//! the strike passes, and a go whose belly band is reported seen as far as where the
+//! ground stands `STRIKE_MARGIN_M` (5 cm) over the underside fails as a go where a
+//! stop was due; a line before the last counts the stops.
+//!
 //! `MAX_RANGE=M` sets every rig's far range limit (`camera.max_range_m`, 4.5 m as
 //! drawn) to `M` metres after the scene is drawn: where it falls inside the corridor,
 //! surfaces leave the sensor's range there. A scene's obstacle may then lie out of
@@ -295,7 +303,7 @@ fn main() {
     let mode = mode.as_str();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let (mut failures, mut total, mut false_go, mut excused) = (0, 0, 0, (0, 0));
-    let mut top_excused = 0;
+    let (mut top_excused, mut belly_excused) = (0, 0);
     let mut not_drawn = 0;
     let mut approaches = Approaches::default();
     for i in 0..n {
@@ -320,6 +328,16 @@ fn main() {
         // A stone, rock, block or step up whose top the camera cannot see: how high it stands
         // is not seen, so any verdict but go is right (a go is judged as usual).
         let unseen_tops = sim::sight::unseen_tops(&terrain, &config);
+        // A scene drawn as climbable whose ground the belly strikes (a ramp under
+        // one half of the corridor, its edge on the centre line, standing high enough
+        // over the other track's ground): a stop in the belly band there is right,
+        // and a go that claims that ground seen is wrong.
+        let strike = |margin_m| {
+            (want.verdict == Decision::Go)
+                .then(|| sim::clearance::belly_strike(&terrain, &config, margin_m))
+                .flatten()
+        };
+        let (strike, struck) = (strike(0.0), strike(sim::clearance::STRIKE_MARGIN_M));
         for noisy in [false, true] {
             let mut f = frame.clone();
             let noise_seed = seed * 1000 + i as u64;
@@ -334,7 +352,15 @@ fn main() {
             let top_excused_here =
                 sim::sight::not_go_for_unseen_tops(v, &unseen_tops, &config.rover);
             top_excused += usize::from(top_excused_here);
-            let fails = if unseen || top_excused_here {
+            let belly_excused_here =
+                strike.is_some_and(|x| sim::clearance::not_go_for_belly_strike(v, x));
+            belly_excused += usize::from(belly_excused_here);
+            let over_strike = struck.filter(|&x| sim::clearance::go_over_a_strike(v, x));
+            let fails = if let Some(x) = over_strike {
+                vec![format!(
+                    "go where the belly strikes the ground {x:.2} m out"
+                )]
+            } else if unseen || top_excused_here || belly_excused_here {
                 Vec::new()
             } else {
                 judge(mode, &want, if noisy { &tol.1 } else { &tol.0 }, v)
@@ -342,7 +368,8 @@ fn main() {
             let label = format!("#{i} noisy={noisy}");
             print.frame(&label, v, &want, (&unseen_tops, top_excused_here));
             total += 1;
-            if v.decision == Decision::Go && want.verdict != Decision::Go {
+            if v.decision == Decision::Go && (want.verdict != Decision::Go || over_strike.is_some())
+            {
                 false_go += 1;
                 if let Some(drive) = approach {
                     let noise = noisy.then_some((noise, noise_seed));
@@ -376,6 +403,9 @@ fn main() {
     }
     println!(
         "{top_excused} frames not go for a stone, rock, block or step whose top is out of view (passed)"
+    );
+    println!(
+        "{belly_excused} frames not go where the belly strikes ground drawn as climbable (passed)"
     );
     if mode == "oblique" || FAMILY_MODES.contains(&mode) {
         println!(

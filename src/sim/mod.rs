@@ -3,6 +3,7 @@
 //! tests, and by the bench.
 
 mod catalogue;
+pub mod clearance;
 pub mod drive;
 pub mod families;
 mod noise;
