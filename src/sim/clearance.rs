@@ -81,8 +81,10 @@ mod tests {
             distance_m,
         };
         let with = |hazards: &[Hazard]| {
-            let mut v = Verdict::default();
-            v.decision = Decision::Stop;
+            let mut v = Verdict {
+                decision: Decision::Stop,
+                ..Verdict::default()
+            };
             hazards.iter().for_each(|&h| v.add_hazard(h));
             v
         };
