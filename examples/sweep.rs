@@ -328,16 +328,7 @@ fn main() {
         // A stone, rock, block or step up whose top the camera cannot see: how high it stands
         // is not seen, so any verdict but go is right (a go is judged as usual).
         let unseen_tops = sim::sight::unseen_tops(&terrain, &config);
-        // A scene drawn as climbable whose ground the belly strikes (a ramp under
-        // one half of the corridor, its edge on the centre line, standing high enough
-        // over the other track's ground): a stop in the belly band there is right,
-        // and a go that claims that ground seen is wrong.
-        let strike = |margin_m| {
-            (want.verdict == Decision::Go)
-                .then(|| sim::clearance::belly_strike(&terrain, &config, margin_m))
-                .flatten()
-        };
-        let (strike, struck) = (strike(0.0), strike(sim::clearance::STRIKE_MARGIN_M));
+        let strike = Strike::of(&terrain, &config, &want);
         for noisy in [false, true] {
             let mut f = frame.clone();
             let noise_seed = seed * 1000 + i as u64;
@@ -352,10 +343,9 @@ fn main() {
             let top_excused_here =
                 sim::sight::not_go_for_unseen_tops(v, &unseen_tops, &config.rover);
             top_excused += usize::from(top_excused_here);
-            let belly_excused_here =
-                strike.is_some_and(|x| sim::clearance::not_go_for_belly_strike(v, x));
+            let belly_excused_here = strike.excuses(v);
             belly_excused += usize::from(belly_excused_here);
-            let over_strike = struck.filter(|&x| sim::clearance::go_over_a_strike(v, x));
+            let over_strike = strike.go_over(v);
             let fails = if let Some(x) = over_strike {
                 vec![format!(
                     "go where the belly strikes the ground {x:.2} m out"
@@ -412,6 +402,44 @@ fn main() {
             "{} frames met a surface under {GRAZING_DEG}° (any verdict passes), {} of them not go",
             excused.0, excused.1
         );
+    }
+}
+
+/// Where the belly strikes a scene drawn as climbable (`sim::clearance`: a ramp under
+/// one half of the corridor, its edge on the centre line, standing high enough over
+/// the other track's ground): a stop in the belly band there is right, and a go that
+/// claims that ground seen is wrong. Both `None` for a scene not due go.
+struct Strike {
+    /// The first row the ground stands over the underside, metres.
+    at: Option<f64>,
+    /// The first row it stands `STRIKE_MARGIN_M` over it, metres.
+    struck: Option<f64>,
+}
+
+impl Strike {
+    /// The strike of `terrain` on `config`'s rover, for a scene expected `want`.
+    fn of(terrain: &Terrain, config: &Config, want: &Expectation) -> Self {
+        let strike = |margin_m| {
+            (want.verdict == Decision::Go)
+                .then(|| sim::clearance::belly_strike(terrain, config, margin_m))
+                .flatten()
+        };
+        Strike {
+            at: strike(0.0),
+            struck: strike(sim::clearance::STRIKE_MARGIN_M),
+        }
+    }
+
+    /// Whether `v` is a stop the strike explains.
+    fn excuses(&self, v: &Verdict) -> bool {
+        self.at
+            .is_some_and(|x| sim::clearance::not_go_for_belly_strike(v, x))
+    }
+
+    /// Where the strike lies when `v` is a go that claims its ground seen.
+    fn go_over(&self, v: &Verdict) -> Option<f64> {
+        self.struck
+            .filter(|&x| sim::clearance::go_over_a_strike(v, x))
     }
 }
 

@@ -27,9 +27,10 @@ const SAMPLE_M: f64 = 0.01;
 /// track on a ramp `h` high and one on level ground, `2·tc` apart, it stands over the
 /// centre line at `h/2 + clearance · sqrt(1 + (h / 2tc)²)`.
 ///
-/// Heights are the terrain's at the sampled points ([`Terrain::field`]'s): a 25 cm rock under the belly on
-/// level ground never strikes a 32 cm clearance; a ramp on one half of the corridor
-/// (its edge on the centre line) strikes once `h` passes 0.91 m on the default rover.
+/// Heights are the terrain's at the sampled points ([`Terrain::field`]'s): a 25 cm
+/// rock under the belly on level ground never strikes a 32 cm clearance; a ramp on one
+/// half of the corridor (its edge on the centre line) strikes once `h` passes 0.91 m
+/// on the default rover.
 pub fn belly_strike(terrain: &Terrain, config: &Config, margin_m: f64) -> Option<f64> {
     let rover = &config.rover;
     let (tc, bhw) = (rover.track_centre_m(), rover.belly_half_width_m);
@@ -42,9 +43,9 @@ pub fn belly_strike(terrain: &Terrain, config: &Config, margin_m: f64) -> Option
     let field = terrain.field();
     (0..=rows).map(|i| i as f64 * SAMPLE_M).find(|&x| {
         let (left, right) = (field.height(x, tc), field.height(x, -tc));
+        let slope = (left - right) / (2.0 * tc);
         (0..=across).any(|j| {
             let y = -bhw + j as f64 * SAMPLE_M;
-            let slope = (left - right) / (2.0 * tc);
             let underside = right + slope * (y + tc) + clearance * slope.hypot(1.0);
             field.height(x, y) > underside + margin_m
         })
