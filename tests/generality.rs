@@ -4,7 +4,7 @@
 //! stops. Every frame is rendered here from its geometry; expectations come from the
 //! geometry and the rover's limits.
 
-use rover_terrain::sim::{Element, Extent, StoneShape};
+use rover_terrain::sim::{Element, Extent, StoneShape, Terrain};
 use rover_terrain::{Config, Decision, HazardKind, Side, Verdict};
 
 #[path = "common/hazards.rs"]
@@ -2179,7 +2179,7 @@ fn the_surface_plane_of_a_smooth_ramp_is_the_drawn_ramp() {
     // `families::surface_toe` checked by hand: on smooth ground the least-squares
     // line through the heights over the tracks is the ramp itself, and over rough
     // ground it moves off it by no more than the bumps allow.
-    use rover_terrain::sim::{families, Terrain};
+    use rover_terrain::sim::families;
     let c = Config::default();
     for (toe, deg) in [(1.2, 15.0), (0.9, -12.0), (1.6, 24.0)] {
         let ramp = Element::ramp(toe, 0.0, deg, 0.0, Extent::Full);
@@ -4237,6 +4237,38 @@ fn ground_falling_away_beside_a_track_rolls_the_body_and_is_no_belly_obstacle() 
         "{:?}",
         noisy.tilt
     );
+}
+
+#[test]
+fn a_track_far_down_beside_the_belly_band_s_flat_ground_strikes_the_rolled_body() {
+    // An 18.9° descent under the right track from 0.97 m, its toe line at −20.9° to
+    // the axle, the belly band's ground flat beside it, seen by a Kinect v2 0.54 m
+    // high pitched 18.9° (`sweep -- oblique 100 4603 random` #13). The right track
+    // stands 0.5 m down 2.6 m out: by the rigid body (`sim::clearance`, checked by
+    // hand in its tests) the band's edge stands over the rolled underside from there,
+    // and 5 cm over it from 2.9 m. It went, workcase 10: the band's own ground was
+    // held for no obstacle. A belly stop, no nearer than 0.3 m before the strike.
+    let c = kinect_v2(mounted([0.2621, -0.0983, 0.5429], [-5.085, 18.906, 0.816]));
+    let descent = |g: f64| vec![Element::ramp(0.9737, -0.45, -g, -20.872, RIGHT_TRACK)];
+    let strike =
+        |g: f64| rover_terrain::sim::clearance::belly_strike(&Terrain::new(descent(g)), &c, 0.0);
+    let at = strike(18.878).expect("the steep descent strikes");
+    assert!((2.5..2.75).contains(&at), "{at}");
+    for v in analyse_views(descent(18.878), &c, [None, Some(13)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
+        assert!(
+            v.hazards
+                .iter()
+                .all(|h| h.kind == HazardKind::Belly && f64::from(h.distance_m) >= at - 0.3),
+            "{:?}",
+            v.hazards
+        );
+    }
+    // At 12° the track stands at most 0.45 m down in the corridor: no strike, go.
+    assert_eq!(strike(12.0), None);
+    let [clean, noisy] = analyse_views(descent(12.0), &c, [None, Some(13)]);
+    assert_go(&clean, 10, 0.9737, -12.0, None);
+    assert_noisy_go(&noisy, 10, 0.9737, -12.0);
 }
 
 #[test]

@@ -81,13 +81,15 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
                 })
                 .fold(f32::NEG_INFINITY, f32::max);
             let top = f.cells[c].top;
-            let underside = belly_underside(wheels, tc, s.y_centre(iy), floor, clearance);
+            let (rigid, underside) = belly_underside(wheels, tc, s.y_centre(iy), floor, clearance);
             let edge = || {
                 [iy.checked_sub(1), Some(iy + 1)]
                     .into_iter()
                     .any(|j| j.is_none_or(|j| j >= s.ny || f.region[j] != Region::Belly))
             };
-            let kind = if top > underside.max(beside + clearance) {
+            // The band's own ground (its upper surface) meets the rolled body itself:
+            // one track far down beside it (see `belly_underside`).
+            let kind = if top > underside.max(beside + clearance) || f.cells[c].crest > rigid {
                 Some(HazardKind::Belly)
             } else if f.past[c]
                 && top - beside.max(higher) > r
@@ -139,27 +141,38 @@ fn belly_line(wheels: [Option<f32>; 2], tc: f32, y: f32) -> (f32, f32) {
     }
 }
 
-/// The lowest the belly's underside passes over strip centre `y` (metres left),
-/// metres: [`belly_line`] plus the clearance upright, but no lower than the lower of
-/// the belly band's own lowest ground in the row (`floor`, seen whole) and the
-/// higher track, plus the clearance; and never higher than the higher track plus the
-/// clearance (the rule before: this one only ever stops more).
+/// Where the belly's underside passes over strip centre `y` (metres left), metres,
+/// as `(rigid, obstacles)`. `rigid` is the rigid body's:
+/// [`belly_line`] plus the clearance upright to it (the secant of the roll), never
+/// higher than the higher track plus the clearance (the rule before the line: this
+/// one only ever stops more). `obstacles`, what an obstacle standing on the belly
+/// band's ground is measured against, is `rigid` raised to the lower of the band's own
+/// lowest ground in the row (`floor`, seen whole) and the higher track, plus the
+/// clearance, where that lies higher.
 ///
 /// Measured from the higher track alone, a 0.5 m block from 15 cm right of the centre
 /// line to 5 cm left of it passed under a body whose left track climbed a ramp 0.27 m
-/// high beside it: the belly passes 0.42 m up over the block's right edge, not 0.59
-/// m. The floor: ground falling away beyond a track's inner edge rolls the body the
-/// other way, and by the rigid body the belly's edge would meet the flat ground it
-/// leaves once that track is some 0.5 m down (a 15° descent 2 m past its toe); the
-/// paper's workcases 9 and 10 call that ground go, and the ground the belly band lies
-/// on is no obstacle standing under it (unless it stands above both tracks, as a
-/// ridge between two trenches: then the tracks' height holds).
-fn belly_underside(wheels: [Option<f32>; 2], tc: f32, y: f32, floor: f32, clearance: f32) -> f32 {
+/// high beside it: the belly passes 0.42 m up over the block's right edge, not 0.59 m.
+/// The floor: ground falling away beyond one track's inner edge rolls the body, and
+/// the line between the tracks passes under the flat ground the band lies on, which
+/// is no obstacle standing under the belly (unless it stands above both tracks, as a
+/// ridge between two trenches: then the tracks' height holds). That ground itself
+/// meets the rolled body once its surface stands over `rigid`: on the default rover
+/// when the lower track is some 0.5 m down, a 30-35° roll (`sweep -- oblique 100 4603
+/// random` #13, an 18.9° descent under the right track, 0.64 m down 2.98 m out, was a
+/// go). The paper's workcases 9 and 10, ground falling away at 10-15° from 1 m or
+/// farther, stay within it over the 3 m corridor.
+fn belly_underside(
+    wheels: [Option<f32>; 2],
+    tc: f32,
+    y: f32,
+    floor: f32,
+    clearance: f32,
+) -> (f32, f32) {
     let higher = higher_track(wheels);
     let (line, secant) = belly_line(wheels, tc, y);
-    (line + clearance * secant)
-        .max(floor.min(higher) + clearance)
-        .min(higher + clearance)
+    let rigid = (line + clearance * secant).min(higher + clearance);
+    (rigid, rigid.max(floor.min(higher) + clearance))
 }
 
 /// Whether belly cell (`ix`, `iy`), past the horizon, lies on the surface of the wheel
@@ -246,21 +259,32 @@ mod tests {
         let c = 0.32;
         // By hand, the ramp of the test below: the line over y = 0.05 m is 0.15 m up,
         // the clearance upright 0.32 · √1.09; the belly band's floor at 0.
-        let u = belly_underside([Some(0.27), Some(0.0)], 0.45, 0.05, 0.0, c);
+        let (rigid, u) = belly_underside([Some(0.27), Some(0.0)], 0.45, 0.05, 0.0, c);
         assert!((u - (0.15 + c * 1.09f32.sqrt())).abs() < 1e-6, "{u}");
+        assert_eq!(rigid, u);
         // Ground falling away beyond the left track's inner edge, 0.5 m down: the line
         // passes under the belly band's flat ground, which holds the belly at its
-        // clearance over it.
-        let u = belly_underside([Some(-0.5), Some(0.0)], 0.45, 0.15, 0.0, c);
+        // clearance over it for what stands on that ground. Over y = 0.15 m the line
+        // stands 0.5 · 0.6 / 0.9 = 0.333 m down, the clearance upright 0.32 · √(1 +
+        // (0.5 / 0.9)²) = 0.366 m: the rigid body passes 3.3 cm over the ground there.
+        let (rigid, u) = belly_underside([Some(-0.5), Some(0.0)], 0.45, 0.15, 0.0, c);
         assert!((u - c).abs() < 1e-6, "{u}");
+        let by_hand = -0.5 * 0.6 / 0.9 + c * (1.0f32 + (0.5f32 / 0.9).powi(2)).sqrt();
+        assert!(
+            (rigid - by_hand).abs() < 1e-6 && rigid > 0.0,
+            "{rigid} {by_hand}"
+        );
+        // 0.7 m down, a 38° roll: 0.467 m down, 0.32 · 1.27 up, under the ground.
+        let (rigid, _) = belly_underside([Some(-0.7), Some(0.0)], 0.45, 0.15, 0.0, c);
+        assert!(rigid < -0.05, "{rigid}");
         // A ridge between two trenches 0.2 m deep: the tracks' height holds.
-        let u = belly_underside([Some(-0.2), Some(-0.2)], 0.45, 0.0, 0.0, c);
-        assert!((u - (c - 0.2)).abs() < 1e-6, "{u}");
+        let (rigid, u) = belly_underside([Some(-0.2), Some(-0.2)], 0.45, 0.0, 0.0, c);
+        assert!((u - (c - 0.2)).abs() < 1e-6 && rigid == u, "{u}");
         // Never above the higher track plus the clearance (however steep the roll).
         for dy in [0.1f32, 0.5, 1.0, 2.0] {
             for y in [-0.2f32, 0.0, 0.2] {
-                let u = belly_underside([Some(dy), Some(0.0)], 0.45, y, 0.0, c);
-                assert!(u <= dy + c + 1e-6, "{dy} {y}: {u}");
+                let (rigid, u) = belly_underside([Some(dy), Some(0.0)], 0.45, y, 0.0, c);
+                assert!(u <= dy + c + 1e-6 && rigid <= u, "{dy} {y}: {u}");
             }
         }
     }
