@@ -4272,6 +4272,33 @@ fn a_track_far_down_beside_the_belly_band_s_flat_ground_strikes_the_rolled_body(
 }
 
 #[test]
+fn of_two_ramps_the_feature_is_the_one_whose_rise_the_wheels_meet_first() {
+    // A 15.7° ramp under the right track from 1.40 m and an 18.7° one under the left
+    // from 1.96 m, both with sloping sides, seen by a 320×240 camera 0.67 m high,
+    // rolled 9.2° and pitched 38°: the image's top edge crosses the left ramp just
+    // past its toe, 7 cells of it seen (`sweep -- bevelled 100 4612 random 9` #79).
+    // Fitted alone, those read 2.2°, their toe 0.9 m before where they rise, and the
+    // left ramp was taken for the nearer face: workcase 4, 1.10 m, 2.2°. Go, workcase
+    // 5 measured on the right ramp, clean and noisy.
+    let c = qvga(
+        mounted([0.1085, -0.0182, 0.6671], [-9.228, 38.164, 5.432]),
+        0.4416,
+    );
+    let side = |from_m: f64, to_m: f64, side_m: f64| Extent::Bevelled {
+        from_m,
+        to_m,
+        side_m,
+    };
+    let ramps = vec![
+        Element::ramp(1.4014, -0.45, 15.688, 0.0, side(-0.7, -0.2, 0.1327)),
+        Element::ramp(1.9594, 0.45, 18.737, 0.0, side(0.2, 0.7, 0.1497)),
+    ];
+    let [clean, noisy] = analyse_views(ramps, &c, [None, Some(79)]);
+    assert_go(&clean, 5, 1.4014, 15.688, None);
+    assert_noisy_go(&noisy, 5, 1.4014, 15.688);
+}
+
+#[test]
 fn a_capped_one_track_ramp_whose_outer_strips_start_beside_the_image_is_measured() {
     // A 320×240 camera 0.68 m high, yawed 8.1° left and rolled 4.9°: its image's
     // right edge crosses the right track 1.2-1.9 m out. A 24.7° ramp under that

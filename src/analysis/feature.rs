@@ -1018,7 +1018,13 @@ fn affected_tracks(f: &Frame, onset: &[Option<Onset>]) -> Option<Affected> {
 
 /// Step 3: the face's plane. Both tracks rise (or fall): one face across both, or a
 /// different face under each? Fit each alone and both together; if the one-track
-/// faces depart from the joint one ([`same_face`]), the nearer one is the feature.
+/// faces depart from the joint one ([`same_face`]), the nearer one is the feature:
+/// the one that departs the ground by the rise threshold nearer, over its track's
+/// centre line. By their toes, a 18.7° ramp under the left track, seen in 7 cells
+/// before the image's top edge, fitted at 2.2° with its toe 0.9 m before where it
+/// rises, was taken over a 15.7° ramp under the right track whose toe was 0.3 m
+/// nearer (`sweep -- bevelled 100 4612 random 9` #79, clean: workcase 4 measured
+/// 2.2°).
 /// Returns the tracks the face affects and its face, measured past a rounded toe
 /// (only the returned face is: the one-track fits are compared by their own planes).
 fn one_face_or_nearer(
@@ -1034,6 +1040,12 @@ fn one_face_or_nearer(
         return (a, both);
     };
     let tc = f.cfg.rover.track_centre_m();
+    // Where a face departs the ground by the rise threshold over a track's centre line
+    // at `y`, metres: where its wheels meet it. Its toe alone is the plane carried
+    // down to the ground, and the plane of a few cells seen just past a toe, where
+    // the view ends, may be far off.
+    let threshold = f.cfg.analysis.rise_threshold_m;
+    let rises_at = |p: &Plane, y: f64| p.toe_x(y) + threshold / p.a.abs();
     let mut one = |left: bool| {
         let face = fit_face(f, g, onset, sel, a.dir, left, !left)?;
         let (own, n) = residuals(f, g, sel, &face.fit);
@@ -1044,7 +1056,7 @@ fn one_face_or_nearer(
         if !same_face(l.1 + r.1, l.2 + r.2, l.3 + r.3) {
             // The selection holds the right track's fit, the last made: the left
             // track's face is fitted again to measure it over its own cells.
-            let nearer = if l.0.plane.toe_x(tc) <= r.0.plane.toe_x(-tc) {
+            let nearer = if rises_at(&l.0.plane, tc) <= rises_at(&r.0.plane, -tc) {
                 a.right = false;
                 fit_face(f, g, onset, sel, a.dir, true, false)
             } else {
