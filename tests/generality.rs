@@ -1053,6 +1053,35 @@ fn a_mound_on_a_bump_stops_once_its_apex_stands_over_a_wheel_radius_above_the_gr
 }
 
 #[test]
+fn a_cone_whose_far_side_lies_in_its_shadow_is_measured_to_its_highest_point_seen() {
+    // A 320×240 camera 0.83 m high, rolled 9.2° and pitched 16.7°, over lumpy ground
+    // with stones (`sweep -- natural 200 4608 random 7` #60). A 15.6 cm cone in the
+    // left track 2.12 m out, its far side in its shadow, its apex 12.9 cm over the
+    // ground before it: the face analysis fitted its front too steep for a slope and
+    // measured it as a step by its top voxel, 11.2 cm over that ground, within a wheel
+    // radius and rough ground's 1 cm: a go. Its highest point seen stands 12.3 cm up.
+    // 9 cm high, it is go.
+    let c = qvga(
+        mounted([0.1852, -0.0166, 0.8270], [-9.2135, 16.7263, -3.9316]),
+        0.3356,
+    );
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.106_908_610,
+                seed: 8_842_443_668_072_209_081,
+            },
+            Element::stone(2.3356, -0.5022, 0.0904, 0.0583, StoneShape::Cone),
+            Element::stone(1.9072, -0.2953, 0.0600, 0.0444, StoneShape::Cone),
+            Element::stone(2.1203, 0.4856, 0.1651, height_m, StoneShape::Cone),
+        ]
+    };
+    let stop = (Decision::Stop, Side::Left, None);
+    go_low_not_tall(field, [0.09, 0.156], &c, 4_608_060, stop);
+}
+
+#[test]
 fn a_stone_whose_foot_lies_in_a_dip_of_lumpy_ground_is_climbed() {
     // A Kinect v2 1.17 m high, pitched 41° and rolled 6°, over lumpy ground with
     // stones. An 8.7 cm stone in the left track stands 12.2 cm over the 2 cm dip at
