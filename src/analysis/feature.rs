@@ -814,9 +814,15 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) 
 /// The farthest the ground departs the face's way from the ground the wheel meets it
 /// on, past the onsets of the affected tracks' strips, metres: the highest top for a
 /// rise (a cell's highest point where the cell past it lies in its shadow,
-/// [`shadow_past`]), the deepest low for a fall, over the seen cells below the
+/// [`Frame::shadow_past`]), the deepest low for a fall, over the seen cells below the
 /// sensor's horizon, each strip measured from its ground before its onset
 /// ([`ground_before`]).
+///
+/// A cell so shadowed is seen from its front only, and its highest point seen is the
+/// nearest to its top: its top voxel's centroid lies up to two thirds of a voxel under
+/// that. A 15.6 cm cone whose far side lay in its shadow read 11.2 cm over the ground
+/// before it by that centroid, 12.3 cm by its highest point, the apex 12.9 cm, and was
+/// a low step (`sweep -- natural 200 4608 random 7` #60, clean).
 ///
 /// Measured from the rover's own ground (z = 0) instead, rough ground's bumps added
 /// to it: an 8.9 cm rock on a 2 cm bump, the ground before it 1-2 cm up, stood 11.3 cm
@@ -835,7 +841,7 @@ fn relief_past_onsets(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected
             if f.seen[c] && !f.past[c] {
                 let cell = &f.cells[c];
                 relief = relief.max(match a.dir {
-                    Dir::Up if shadow_past(f, ix, iy) => cell.top.max(cell.peak) - base,
+                    Dir::Up if f.shadow_past(ix, iy) => cell.top.max(cell.peak) - base,
                     Dir::Up => cell.top - base,
                     Dir::Down => base - cell.low,
                 });
@@ -843,19 +849,6 @@ fn relief_past_onsets(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected
         }
     }
     relief
-}
-
-/// Whether the cell just past (`ix`, `iy`) along its strip is unseen and in a shadow:
-/// what stands in cell (`ix`, `iy`) is seen from its front only, and its highest point
-/// seen is the nearest to its top (a voxel's centroid lies up to two thirds of a voxel
-/// under that: a 15.6 cm cone whose far side lay in its shadow read 11.2 cm over the
-/// ground before it by its top voxel, 12.3 cm by its highest point, the apex 12.9 cm,
-/// and was a low step: `sweep -- natural 200 4608 random 7` #60, clean).
-fn shadow_past(f: &Frame, ix: usize, iy: usize) -> bool {
-    ix + 1 < f.spec.nx && {
-        let next = f.spec.cell(ix + 1, iy);
-        !f.seen[next] && f.shadowed[next]
-    }
 }
 
 /// The ground strip `iy` shows before its onset at row `ix`: the mean height (`z`) of

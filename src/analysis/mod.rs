@@ -179,6 +179,14 @@ impl<'a> Frame<'a> {
     pub fn strips(&self, r: Region) -> std::ops::Range<usize> {
         self.strip_runs[r as usize].clone()
     }
+
+    /// Whether the cell just past (`ix`, `iy`) along its strip (row `ix + 1`) lies in
+    /// a shadow (unseen, hidden by something seen): what stands in (`ix`, `iy`) is seen
+    /// from its front only, and the hidden ground past it is lower than its top (as
+    /// high, it would stand in the line of sight over the top, and be seen).
+    pub fn shadow_past(&self, ix: usize, iy: usize) -> bool {
+        ix + 1 < self.spec.nx && self.shadowed[self.spec.cell(ix + 1, iy)]
+    }
 }
 
 /// The region of a strip whose centre lies `y` metres left of the centre line, with

@@ -257,13 +257,8 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
         let Some(peak) = sharp_apex(cell, here.z) else {
             continue;
         };
-        // The row just past the strip's `j`th cell unseen and in a shadow: hidden
-        // ground lower than the top (as high, it would stand in the line of sight
-        // over the top, and be seen).
-        let shadow_past = |j: usize| {
-            let ix = strip[j].ix + 1;
-            strip.get(j + 1).is_none_or(|c| c.ix > ix) && ix < s.nx && f.shadowed[s.cell(ix, iy)]
-        };
+        // The row just past the strip's `j`th cell in a shadow (`Frame::shadow_past`).
+        let shadow_past = |j: usize| f.shadow_past(strip[j].ix, iy);
         // The cell just past it in its shadow, or the cell past that one, and the one
         // between a glimpse of the far side.
         let shadow = shadow_past(k);
