@@ -658,6 +658,59 @@ fn bumps_hiding_a_rough_descent_s_far_end_make_no_drop_off_but_an_edge_there_doe
 }
 
 #[test]
+fn a_crest_hiding_a_rough_descent_s_far_end_where_the_strips_beside_see_it_go_on_is_no_drop_off() {
+    // A camera 0.62 m high, pitched 16.4°, rolled 7.1° and yawed 9.9°, over a 12.7°
+    // descent from 0.89 m with a 0.34 m rounded toe on rough ground (`sweep --
+    // rounded 100 4915 random` #93, clean and noisy). Three strips lie unseen from
+    // 2.78 m to the corridor's end behind a crest at 2.73 m, where the ground falls
+    // more steeply than the cells before it: continued from those, the line of sight
+    // clears the crest, and it was a `drop_off`. The strips 2-5 beside them see the
+    // ground go on at the descent's level, and the line of sight to that passes under
+    // the crest.
+    let mut c = mounted(
+        [0.014_932, -0.096_490, 0.615_662],
+        [7.127_903, 16.447_099, 9.904_056],
+    );
+    c.camera.min_range_m = 0.386_962;
+    let descent = vec![
+        Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m: 0.156_825_699,
+            seed: 13_450_368_121_536_090_100,
+        },
+        Element::ramp(0.894_001, 0.0, -12.711_332, 0.0, Extent::Full).toe_rounded(Some(0.338_230)),
+    ];
+    for v in analyse_views(descent.clone(), &c, [None, Some(4_915_093)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        let f = v.feature.expect("a go has a feature");
+        assert_eq!(f.workcase, 8, "{f:?}");
+        assert!(
+            (f64::from(f.distance_m.unwrap()) - 0.894_001).abs() <= 0.04,
+            "{f:?}"
+        );
+        assert!(
+            (f64::from(f.gradient_deg.unwrap()) + 12.711_332).abs() <= 2.0,
+            "{f:?}"
+        );
+    }
+    // The ground ending there instead leaves no strip seeing it go on: a drop-off.
+    for edge in [2.3, 2.5, 2.7, 2.8, 2.9] {
+        let mut scene = descent.clone();
+        scene.push(Element::DropOff {
+            x_m: edge,
+            depth_m: 0.5,
+        });
+        for v in analyse_views(scene, &c, [None, Some(4_915_093)]) {
+            assert!(
+                v.hazards.iter().any(|h| h.kind == HazardKind::DropOff),
+                "edge at {edge}: {:?}",
+                v.hazards
+            );
+        }
+    }
+}
+
+#[test]
 fn a_drop_past_a_rough_descent_stops_or_lies_past_what_the_verdict_says_is_seen() {
     // Random rigs over 10-15° descents on rough ground, and a 0.3-0.6 m drop across
     // the corridor 2.85-2.95 m out (nearer, fewer frames go). Met far out at a
