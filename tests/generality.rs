@@ -31,15 +31,26 @@ fn assert_go(v: &Verdict, wc: u8, d: f64, g: f64, alpha: Option<f64>) {
 
 /// [`assert_go`] within the noisy bars: 3 cm and 1.5°.
 fn assert_noisy_go(v: &Verdict, wc: u8, d: f64, g: f64) {
+    assert_go_within(v, wc, d, g, (0.03, 1.5));
+}
+
+/// [`assert_go`] within rough ground's bars: 4 cm and 2°.
+fn assert_rough_go(v: &Verdict, wc: u8, d: f64, g: f64) {
+    assert_go_within(v, wc, d, g, (0.04, 2.0));
+}
+
+/// A go with workcase `wc`, its distance within `bar_m` of `d` (metres) and its
+/// gradient within `bar_deg` of `g` (degrees).
+fn assert_go_within(v: &Verdict, wc: u8, d: f64, g: f64, (bar_m, bar_deg): (f64, f64)) {
     assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
     let f = v.feature.expect("a go has a feature");
     assert_eq!(f.workcase, wc, "{f:?}");
     assert!(
-        (f64::from(f.distance_m.unwrap()) - d).abs() <= 0.03,
+        (f64::from(f.distance_m.unwrap()) - d).abs() <= bar_m,
         "{f:?}"
     );
     assert!(
-        (f64::from(f.gradient_deg.unwrap()) - g).abs() <= 1.5,
+        (f64::from(f.gradient_deg.unwrap()) - g).abs() <= bar_deg,
         "{f:?}"
     );
 }
@@ -624,17 +635,7 @@ fn bumps_hiding_a_rough_descent_s_far_end_make_no_drop_off_but_an_edge_there_doe
     ];
     let views = analyse_views(descent.clone(), &c, [None, Some(9_001_002)]);
     for v in &views {
-        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
-        let f = v.feature.expect("a go has a feature");
-        assert_eq!(f.workcase, 8, "{f:?}");
-        assert!(
-            (f64::from(f.distance_m.unwrap()) - 1.053_584).abs() <= 0.04,
-            "{f:?}"
-        );
-        assert!(
-            (f64::from(f.gradient_deg.unwrap()) + 13.797_633).abs() <= 2.0,
-            "{f:?}"
-        );
+        assert_rough_go(v, 8, 1.053_584, -13.797_633);
     }
     // The ground ending there instead leaves every strip unseen from its edge on, and
     // no strip sees ground going on past the bumps' shadow: a drop-off, up to 0.1 m
@@ -681,17 +682,7 @@ fn a_crest_hiding_a_rough_descent_s_far_end_where_the_strips_beside_see_it_go_on
         Element::ramp(0.894_001, 0.0, -12.711_332, 0.0, Extent::Full).toe_rounded(Some(0.338_230)),
     ];
     for v in analyse_views(descent.clone(), &c, [None, Some(4_915_093)]) {
-        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
-        let f = v.feature.expect("a go has a feature");
-        assert_eq!(f.workcase, 8, "{f:?}");
-        assert!(
-            (f64::from(f.distance_m.unwrap()) - 0.894_001).abs() <= 0.04,
-            "{f:?}"
-        );
-        assert!(
-            (f64::from(f.gradient_deg.unwrap()) + 12.711_332).abs() <= 2.0,
-            "{f:?}"
-        );
+        assert_rough_go(&v, 8, 0.894_001, -12.711_332);
     }
     // The ground ending there instead leaves no strip seeing it go on: a drop-off.
     for edge in [2.3, 2.5, 2.7, 2.8, 2.9] {
@@ -2377,18 +2368,7 @@ fn a_rough_ramp_under_the_limit_seen_coarsely_makes_no_step() {
     };
     let ramp = Element::ramp(1.4944, 0.0, 24.963, 0.0, Extent::Full);
     let v = analyse(vec![rough, ramp], &c);
-    assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
-    let f = v.feature.expect("a go has a feature");
-    assert_eq!(f.workcase, 2);
-    // Rough ground's bars.
-    assert!(
-        (f64::from(f.distance_m.unwrap()) - 1.4944).abs() <= 0.04,
-        "{f:?}"
-    );
-    assert!(
-        (f64::from(f.gradient_deg.unwrap()) - 24.963).abs() <= 2.0,
-        "{f:?}"
-    );
+    assert_rough_go(&v, 2, 1.4944, 24.963);
 }
 
 #[test]
