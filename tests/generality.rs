@@ -1097,6 +1097,40 @@ fn a_mound_on_a_bump_stops_once_its_apex_stands_over_a_wheel_radius_above_the_gr
 }
 
 #[test]
+fn stones_fitted_as_one_plane_that_their_strips_fall_back_from_are_measured_as_a_step() {
+    // A 320×240 camera 0.82 m high, rolled 7.1°, pitched 19.8° and yawed 7.3°, over
+    // lumpy ground with stones (`sweep -- natural 200 5008 random 7` #76). A 15.1 cm
+    // cone in the left track 1.57 m out, its apex 13.1 cm over the ground before it;
+    // the step test sees its flank climb 12-13 cm over 0.25-0.33 m, no step and too
+    // bent for a slope, and nearer cells' wheels rest on the flank. The face analysis
+    // fitted it and the corridor's other stones as one 2.8° plane, their cells 2.4 cm
+    // about it: a go, clean and noisy. Every strip falls back to its ground past its
+    // top: stones, measured as a step from the onsets, 12.4-12.6 cm over the ground
+    // before them. 9 cm high, it is go.
+    let c = qvga(
+        mounted([0.2763, -0.0145, 0.8248], [7.0871, 19.7539, 7.2508]),
+        0.4988,
+    );
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.117_775_248,
+                seed: 110_646_141_553_448_086,
+            },
+            Element::stone(1.3740, -0.3215, 0.1066, 0.0546, StoneShape::Cap),
+            Element::stone(2.1007, 0.5456, 0.1104, 0.0707, StoneShape::Mound),
+            Element::stone(2.3595, -0.6235, 0.1525, 0.0823, StoneShape::Boulder),
+            Element::stone(2.6334, -0.4656, 0.0897, 0.0676, StoneShape::Cap),
+            Element::stone(1.2690, 0.3360, 0.1327, 0.0874, StoneShape::Mound),
+            Element::stone(1.5736, 0.5011, 0.1874, height_m, StoneShape::Cone),
+        ]
+    };
+    let stop = (Decision::Stop, Side::Left, Some(HazardKind::Step));
+    go_low_not_tall(field, [0.09, 0.151_447], &c, 5_008_076, stop);
+}
+
+#[test]
 fn a_cone_whose_far_side_lies_in_its_shadow_is_measured_to_its_highest_point_seen() {
     // A 320×240 camera 0.83 m high, rolled 9.2° and pitched 16.7°, over lumpy ground
     // with stones (`sweep -- natural 200 4608 random 7` #60). A 15.6 cm cone in the

@@ -784,6 +784,17 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) 
     {
         (at_ref, gradient, alpha, nearest) = measures(f, onset, None, affected);
         sd = 0.0;
+    } else if face.is_some_and(|face| face.spread_m > STONES_SPREAD_M)
+        && falls_back(f, g.z, onset, affected)
+    {
+        // Stones fitted as one plane: its cells spread about it by more than rough
+        // ground's, and every strip comes back down past its top. Measured as a step
+        // from the onsets, its relief decides. A 15.1 cm cone 1.57 m out, 12.4-12.6
+        // cm over the ground before it, was fitted with the corridor's other stones as
+        // a 2.8-3.1° face, its cells 2.4-2.5 cm about it: a go (`sweep -- natural 200
+        // 5008 random 7` #76, clean and noisy, a 320×240 camera).
+        (at_ref, gradient, alpha, nearest) = measures(f, onset, None, affected);
+        sd = 0.0;
     }
     let step_relief = (gradient.abs() >= 90.0).then(relief);
     // A face met almost side-on (a side slope) has its toe line meet the reference
@@ -849,6 +860,46 @@ fn relief_past_onsets(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected
         }
     }
     relief
+}
+
+/// How far a fitted face's cells may spread about its plane (one standard deviation,
+/// robust) and still be a face, metres: rough ground's ±2.5 cm spreads by 1.1-1.3 cm,
+/// a cell's own noise adds millimetres.
+const STONES_SPREAD_M: f64 = 0.02;
+
+/// Whether every affected strip rises and comes back down: past its highest seen cell
+/// below the horizon, a seen cell stands within the rise threshold of the strip's
+/// ground before its onset ([`ground_before`]). A ramp rises out of the view or onto a
+/// plateau; stones fall back to the ground they stand on.
+fn falls_back(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected) -> bool {
+    let s = f.spec;
+    let threshold = f.cfg.analysis.rise_threshold_m as f32;
+    if a.dir != Dir::Up {
+        return false;
+    }
+    let mut strips = 0;
+    for iy in (0..s.ny).filter(|&iy| a.chosen(f, iy)) {
+        let Some(o) = onset[iy].filter(|o| o.dir == a.dir) else {
+            continue;
+        };
+        let base = ground_before(f, z, iy, o.ix);
+        let (mut high, mut back) = (f32::NEG_INFINITY, false);
+        for c in (o.ix..s.nx)
+            .map(|ix| s.cell(ix, iy))
+            .filter(|&c| f.seen[c] && !f.past[c])
+        {
+            if z[c] > high {
+                (high, back) = (z[c], false);
+            } else if z[c] - base <= threshold {
+                back = true;
+            }
+        }
+        if !back {
+            return false;
+        }
+        strips += 1;
+    }
+    strips > 0
 }
 
 /// The ground strip `iy` shows before its onset at row `ix`: the mean height (`z`) of
