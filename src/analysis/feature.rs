@@ -777,22 +777,23 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) 
         }
         _ => 0.0,
     };
-    if face.is_some_and(|face| {
-        (!face.to_view_end && too_steep(gradient, 0.0))
-            || (face.in_shadow && too_steep(gradient, sd))
-    }) && super::low_step(relief(), &f.cfg.rover)
-    {
-        (at_ref, gradient, alpha, nearest) = measures(f, onset, None, affected);
-        sd = 0.0;
-    } else if face.is_some_and(|face| face.spread_m > STONES_SPREAD_M)
-        && falls_back(f, g.z, onset, affected)
-    {
-        // Stones fitted as one plane: its cells spread about it by more than rough
-        // ground's, and every strip comes back down past its top. Measured as a step
-        // from the onsets, its relief decides. A 15.1 cm cone 1.57 m out, 12.4-12.6
-        // cm over the ground before it, was fitted with the corridor's other stones as
-        // a 2.8-3.1° face, its cells 2.4-2.5 cm about it: a go (`sweep -- natural 200
-        // 5008 random 7` #76, clean and noisy, a 320×240 camera).
+    let low_step_face = || {
+        face.is_some_and(|face| {
+            (!face.to_view_end && too_steep(gradient, 0.0))
+                || (face.in_shadow && too_steep(gradient, sd))
+        }) && super::low_step(relief(), &f.cfg.rover)
+    };
+    // Stones fitted as one plane: its cells spread about it by more than rough
+    // ground's, and every strip comes back down past its top. Measured as a step from
+    // the onsets, its relief decides. A 15.1 cm cone 1.57 m out, 12.4-12.6 cm over
+    // the ground before it, was fitted with the corridor's other stones as a 2.8-3.1°
+    // face, its cells 2.4-2.5 cm about it: a go (`sweep -- natural 200 5008 random 7`
+    // #76, clean and noisy, a 320×240 camera).
+    let stones = || {
+        face.is_some_and(|face| face.spread_m > STONES_SPREAD_M)
+            && falls_back(f, g.z, onset, affected)
+    };
+    if low_step_face() || stones() {
         (at_ref, gradient, alpha, nearest) = measures(f, onset, None, affected);
         sd = 0.0;
     }
@@ -842,12 +843,8 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) 
 fn relief_past_onsets(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected) -> f32 {
     let s = f.spec;
     let mut relief = 0.0f32;
-    for iy in (0..s.ny).filter(|&iy| a.chosen(f, iy)) {
-        let Some(o) = onset[iy].filter(|o| o.dir == a.dir) else {
-            continue;
-        };
-        let base = ground_before(f, z, iy, o.ix);
-        for ix in o.ix..s.nx {
+    for (iy, from, base) in onset_strips(f, z, onset, a) {
+        for ix in from..s.nx {
             let c = s.cell(ix, iy);
             if f.seen[c] && !f.past[c] {
                 let cell = &f.cells[c];
@@ -878,13 +875,9 @@ fn falls_back(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected) -> boo
         return false;
     }
     let mut strips = 0;
-    for iy in (0..s.ny).filter(|&iy| a.chosen(f, iy)) {
-        let Some(o) = onset[iy].filter(|o| o.dir == a.dir) else {
-            continue;
-        };
-        let base = ground_before(f, z, iy, o.ix);
+    for (iy, from, base) in onset_strips(f, z, onset, a) {
         let (mut high, mut back) = (f32::NEG_INFINITY, false);
-        for c in (o.ix..s.nx)
+        for c in (from..s.nx)
             .map(|ix| s.cell(ix, iy))
             .filter(|&c| f.seen[c] && !f.past[c])
         {
@@ -900,6 +893,22 @@ fn falls_back(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected) -> boo
         strips += 1;
     }
     strips > 0
+}
+
+/// The affected strips with an onset the face's way: each strip, its onset's row and
+/// its ground before the onset ([`ground_before`], metres).
+fn onset_strips<'f>(
+    f: &'f Frame,
+    z: &'f [f32],
+    onset: &'f [Option<Onset>],
+    a: Affected,
+) -> impl Iterator<Item = (usize, usize, f32)> + 'f {
+    (0..f.spec.ny)
+        .filter(move |&iy| a.chosen(f, iy))
+        .filter_map(move |iy| {
+            let o = onset[iy].filter(|o| o.dir == a.dir)?;
+            Some((iy, o.ix, ground_before(f, z, iy, o.ix)))
+        })
 }
 
 /// The ground strip `iy` shows before its onset at row `ix`: the mean height (`z`) of

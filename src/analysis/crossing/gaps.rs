@@ -609,14 +609,14 @@ fn judge_gap(
                     .all(|j| visibility::explained(f, j, iy, z(s.x_centre(j))))
             };
             let hidden = hidden_at(&predicted) || on_line.is_some_and(|z| hidden_at(&z));
-            let beside = || {
+            let seen_beside = || {
                 unseen.clone().all(|j| {
                     let least = predicted(s.x_centre(j)) - r;
                     ground_beside(f, j, iy, least)
                         .is_some_and(|z| visibility::explained(f, j, iy, z))
                 })
             };
-            (!hidden && !bumps() && !sampled_out() && !across() && !beside())
+            (!hidden && !bumps() && !sampled_out() && !across() && !seen_beside())
                 .then_some(HazardKind::DropOff)
         }
         // A fall of more than a wheel radius, by the cells' heights, from a cell standing
