@@ -20,7 +20,9 @@
 //!    the toe line's left end is nearer. A face too steep to fit as a plane (a low
 //!    step) is measured from the onsets, with a gradient of ±90°.
 
-use super::crossing::{ground_beside_face, median, unresolved_face_along};
+use super::crossing::{
+    ground_beside_face, median, unresolved_face_along, FRONT_RISING_M, STEEP_EXIT_RISE_M,
+};
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region};
 use crate::grid::{Cell, GridSpec};
@@ -735,10 +737,10 @@ impl Affected {
 /// Also returns how uncertain the gradient is on rough ground (one standard deviation,
 /// degrees; see [`gradient_sd_deg`]) when the face runs on to where the view ends, so
 /// that only its first stretch is seen; else (the face seen whole, flat ground, a
-/// step) 0. And, for a face measured as a step (±90°), how far the ground past its
-/// onsets stands off the ground before them its way (metres, [`relief_past_onsets`]): a
-/// low step stands under a wheel radius.
-pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) {
+/// step) 0. And, for a face measured as a step (±90°), its [`StepRelief`]: how far the
+/// ground past its onsets stands off the ground before them its way (a low step stands
+/// under a wheel radius), and whether its top is seen.
+pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<StepRelief>) {
     let Scratch {
         onset,
         selection,
@@ -757,7 +759,7 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) 
     let (mut at_ref, mut gradient, mut alpha, mut nearest) = measures(f, onset, plane, affected);
     // A face too steep for a slope, seen whole (ground beyond it) and standing nowhere
     // more than a wheel radius and rough ground's margin off the ground before it (as
-    // for a step's relief, `too_high_step`), is a low step: a wheel climbs it as one,
+    // for a step's relief, `high_or_unseen_step`), is a low step: a wheel climbs it as one,
     // whatever its flank (two 8 cm pebbles one behind the other in a track fitted as
     // a 40° face stopped the rover on flat ground). Measured as one, from the onsets.
     // So is one whose view ends only in its own shadow: a stone's front whose far side
@@ -791,13 +793,16 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) 
     // #76, clean and noisy, a 320×240 camera).
     let stones = || {
         face.is_some_and(|face| face.spread_m > STONES_SPREAD_M)
-            && falls_back(f, g.z, onset, affected)
+            && stones_fall_back(f, g.z, onset, affected)
     };
     if low_step_face() || stones() {
         (at_ref, gradient, alpha, nearest) = measures(f, onset, None, affected);
         sd = 0.0;
     }
-    let step_relief = (gradient.abs() >= 90.0).then(relief);
+    let step_relief = (gradient.abs() >= 90.0).then(|| StepRelief {
+        relief_m: relief(),
+        unseen_top_m: unseen_tops(f, g.z, onset, affected),
+    });
     // A face met almost side-on (a side slope) has its toe line meet the reference
     // line behind the rover, or far past the corridor, or never: its distance is then
     // where the toe line is nearest within the affected tracks, and 0 for a track
@@ -823,6 +828,94 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) 
     (feature, sd, step_relief)
 }
 
+/// How a face measured as a step stands ([`analyse`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepRelief {
+    /// How far the ground past the onsets stands off the ground before them, the
+    /// step's way, over the cells seen below the sensor's horizon
+    /// ([`relief_past_onsets`]), metres.
+    pub relief_m: f32,
+    /// Per wheel track, `[left, right]`, where the step's top is not seen: the nearest
+    /// foot (its near edge, x, metres) of the climbs of a track whose strips still
+    /// rise where their view ends ([`unseen_tops`]). There `relief_m` is only a lower
+    /// bound.
+    pub unseen_top_m: [Option<f32>; 2],
+}
+
+/// Fewest strips of a track that still rise where their view ends for [`unseen_tops`]
+/// to take a rising step's top there as not seen: one strip may be a bump of rough
+/// ground, or noise, at the cut.
+const UNSEEN_TOP_STRIPS: usize = 2;
+
+/// Per wheel track, `[left, right]`, whether a rising step's top is not seen there:
+/// where [`UNSEEN_TOP_STRIPS`] or more of the track's affected strips with an onset
+/// the step's way climb into the cells past the sensor's horizon ([`climb_into_cut`]),
+/// the nearest of their climbs' feet (near edge, x, metres). What the face analysis
+/// measures of such a step is only what lies below the image's top edge. A 15 cm
+/// Gaussian mound 1.96 m out, the image's top edge across its front, rose into the cut
+/// cells 8-10 cm over the ground before it in three strips, and the relief past the
+/// onsets, 8.9 cm (a 9 cm mound before it), was a low step's: a go (`sweep -- natural
+/// 200 5108 random 7` #53, clean and noisy, a Kinect v2 0.58 m high pitched 44°).
+fn unseen_tops(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected) -> [Option<f32>; 2] {
+    let mut tracks = [(0usize, f32::INFINITY); 2];
+    if a.dir == Dir::Up {
+        for (iy, from, base) in onset_strips(f, z, onset, a) {
+            if let Some(foot) = climb_into_cut(f, z, iy, from, base) {
+                let t = &mut tracks[usize::from(f.region[iy] != Region::Left)];
+                *t = (t.0 + 1, t.1.min(foot));
+            }
+        }
+    }
+    tracks.map(|(n, foot)| (n >= UNSEEN_TOP_STRIPS).then_some(foot))
+}
+
+/// Least rise per run from cell to cell of a climb into the cut for
+/// [`climb_into_cut`]'s foot (about 6°): rough ground's long gentle swells before it
+/// are the ground the climb starts from. On a 10 cm lumpy swell that rose 1.8 cm over
+/// 0.3 m to a 4.7 cm rock the view ends on, the foot read 0.3 m before the rock's.
+const CLIMB_MIN_SLOPE: f32 = 0.1;
+
+/// Where strip `iy` still rises where its view ends, past its onset at row `from`: its
+/// last cell seen below the sensor's horizon is the one before its first cell past it
+/// (`h`), and the top of the cells past it among the three from `h` (what is seen of
+/// them lies under the image's top edge: a lower bound) stands [`FRONT_RISING_M`] over
+/// that cell's top and [`STEEP_EXIT_RISE_M`] (rough ground's peak to peak) over the
+/// strip's ground before its onset (`base`, metres), as the crossing tests'
+/// [`steep_exit`](super::crossing::steep_exit) reads a front the view ends on. Returns
+/// the climb's foot, the near edge (x, metres) of the cell from which the strip's
+/// heights (`z`) rise cell by cell to the cut by [`CLIMB_MIN_SLOPE`] or more, or
+/// `None`.
+fn climb_into_cut(f: &Frame, z: &[f32], iy: usize, from: usize, base: f32) -> Option<f32> {
+    let s = f.spec;
+    let below = |ix: usize| {
+        let c = s.cell(ix, iy);
+        f.seen[c] && !f.past[c]
+    };
+    let h = (from + 1..s.nx).find(|&ix| {
+        let c = s.cell(ix, iy);
+        f.seen[c] && f.past[c]
+    })?;
+    if !below(h - 1) {
+        return None;
+    }
+    let top = (h..(h + 3).min(s.nx))
+        .map(|ix| s.cell(ix, iy))
+        .filter(|&c| f.seen[c] && f.past[c])
+        .map(|c| f.cells[c].top)
+        .fold(f32::NEG_INFINITY, f32::max);
+    let last = f.cells[s.cell(h - 1, iy)].top;
+    if top < last + FRONT_RISING_M || top - base < STEEP_EXIT_RISE_M {
+        return None;
+    }
+    let climbs = CLIMB_MIN_SLOPE * s.voxel_m;
+    let mut foot = h - 1;
+    while foot > from && below(foot - 1) && z[s.cell(foot, iy)] - z[s.cell(foot - 1, iy)] >= climbs
+    {
+        foot -= 1;
+    }
+    Some(s.x_centre(foot) - 0.5 * s.voxel_m)
+}
+
 /// The farthest the ground departs the face's way from the ground the wheel meets it
 /// on, past the onsets of the affected tracks' strips, metres: the highest top for a
 /// rise (a cell's highest point where the cell past it lies in its shadow,
@@ -841,19 +934,26 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<f32>) 
 /// over z = 0 and stopped the rover (`sweep -- bevelled 100 6401 random` #50, a rock
 /// field due go, clean and noisy).
 fn relief_past_onsets(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected) -> f32 {
+    onset_strips(f, z, onset, a)
+        .map(|(iy, from, base)| strip_relief(f, iy, from, base, a.dir))
+        .fold(0.0, f32::max)
+}
+
+/// The farthest strip `iy` departs `dir`'s way from `base` (its ground before, metres)
+/// over its seen cells below the horizon from row `from` on, metres: see
+/// [`relief_past_onsets`].
+fn strip_relief(f: &Frame, iy: usize, from: usize, base: f32, dir: Dir) -> f32 {
     let s = f.spec;
     let mut relief = 0.0f32;
-    for (iy, from, base) in onset_strips(f, z, onset, a) {
-        for ix in from..s.nx {
-            let c = s.cell(ix, iy);
-            if f.seen[c] && !f.past[c] {
-                let cell = &f.cells[c];
-                relief = relief.max(match a.dir {
-                    Dir::Up if f.shadow_past(ix, iy) => cell.top.max(cell.peak) - base,
-                    Dir::Up => cell.top - base,
-                    Dir::Down => base - cell.low,
-                });
-            }
+    for ix in from..s.nx {
+        let c = s.cell(ix, iy);
+        if f.seen[c] && !f.past[c] {
+            let cell = &f.cells[c];
+            relief = relief.max(match dir {
+                Dir::Up if f.shadow_past(ix, iy) => cell.top.max(cell.peak) - base,
+                Dir::Up => cell.top - base,
+                Dir::Down => base - cell.low,
+            });
         }
     }
     relief
@@ -864,17 +964,20 @@ fn relief_past_onsets(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected
 /// a cell's own noise adds millimetres.
 const STONES_SPREAD_M: f64 = 0.02;
 
-/// Whether every affected strip rises and comes back down: past its highest seen cell
-/// below the horizon, a seen cell stands within the rise threshold of the strip's
-/// ground before its onset ([`ground_before`]). A ramp rises out of the view or onto a
-/// plateau; stones fall back to the ground they stand on.
-fn falls_back(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected) -> bool {
+/// Whether a rising face is stones: at least one affected strip rises and comes back
+/// down (past its highest seen cell below the horizon, a seen cell stands within the
+/// rise threshold of the strip's ground before its onset, [`ground_before`]), and
+/// either every strip does or those that do stand too high for a low step
+/// ([`strip_relief`]). A ramp rises out of the view or onto a plateau; stones fall back
+/// to the ground they stand on. One stone too tall is a step whatever the strips the
+/// view's end cuts.
+fn stones_fall_back(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected) -> bool {
     let s = f.spec;
     let threshold = f.cfg.analysis.rise_threshold_m as f32;
     if a.dir != Dir::Up {
         return false;
     }
-    let mut strips = 0;
+    let (mut every, mut tallest) = (true, None::<f32>);
     for (iy, from, base) in onset_strips(f, z, onset, a) {
         let (mut high, mut back) = (f32::NEG_INFINITY, false);
         for c in (from..s.nx)
@@ -887,12 +990,14 @@ fn falls_back(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected) -> boo
                 back = true;
             }
         }
-        if !back {
-            return false;
+        if back {
+            let relief = strip_relief(f, iy, from, base, a.dir);
+            tallest = Some(tallest.map_or(relief, |t| t.max(relief)));
+        } else {
+            every = false;
         }
-        strips += 1;
     }
-    strips > 0
+    tallest.is_some_and(|t| every || !super::low_step(t, &f.cfg.rover))
 }
 
 /// The affected strips with an onset the face's way: each strip, its onset's row and
@@ -1367,6 +1472,37 @@ mod tests {
         let f = p.analyzer().frame(p.grid());
         let face = fitted(&f);
         assert!(face.to_view_end && face.in_shadow, "{face:?}");
+    }
+
+    #[test]
+    fn a_strip_still_rising_where_its_view_ends_gives_its_climb_s_foot() {
+        // A camera 0.6 m high pitched 45° sees level ground to 1.38 m (its image's top
+        // edge 23.5° down). A 25° ramp from 0.8 m under the left track meets that ray
+        // 1.08 m out, 13 cm up: its strips climb into the cut cells from the toe.
+        // Capped 4.5 cm up, the ramp levels off before the cut, under rough ground's
+        // peak to peak over the ground before it: no climb into the cut.
+        let mut config = Config::default();
+        (config.mount.z_m, config.mount.pitch_deg) = (0.6, 45.0);
+        for (cap_m, rises) in [(None, true), (Some(0.045), false)] {
+            let ramp = Element::ramp(0.8, 0.45, 25.0, 0.0, LEFT_TRACK).capped(cap_m);
+            let frame = sim::render(&Terrain::new(vec![ramp]), &config);
+            let mut p = Pipeline::new(config.clone()).unwrap();
+            p.process(&frame).unwrap();
+            let f = p.analyzer().frame(p.grid());
+            let sc = prepared(&f);
+            let iy = (0..f.spec.ny)
+                .find(|&iy| (f.spec.y_centre(iy) - 0.475).abs() < 1e-3)
+                .unwrap();
+            let o = sc.onset[iy].expect("the ramp's strip rises");
+            let base = ground_before(&f, &sc.z, iy, o.ix);
+            let foot = climb_into_cut(&f, &sc.z, iy, o.ix, base);
+            if rises {
+                let foot = foot.expect("the strip climbs into the cut");
+                assert!((0.8..=0.9).contains(&foot), "{foot}");
+            } else {
+                assert_eq!(foot, None, "cap {cap_m:?}");
+            }
+        }
     }
 
     #[test]

@@ -403,7 +403,7 @@ impl Analyzer {
             verdict.feature = (verdict.decision == Decision::Go).then_some(measured);
             let rover = &frame.cfg.rover;
             if too_steep_face(&measured, sd_deg, rover, verdict)
-                || too_high_step(&measured, step_relief, rover, verdict)
+                || high_or_unseen_step(&measured, step_relief, rover, verdict)
             {
                 verdict.feature = None;
                 decide(verdict, false, nearest_unseen);
@@ -580,9 +580,12 @@ fn too_steep_face(
 /// Whether the measured face (`measured`) of a go or of unknown ground is a step
 /// (±90°) whose ground past its onsets stands more than a wheel radius and a margin
 /// for rough ground's bumps ([`crossing::UNSEEN_FOOT_MARGIN_M`]) off the ground
-/// before them (`step_relief`, metres, from `feature::analyse`): then it is no low
-/// step, and a `step` hazard on each side its workcase names goes into `verdict`,
-/// where the toe line is nearest within that side's wheel track, metres. Without the
+/// before them (`step_relief`, from `feature::analyse`): then it is no low step, and
+/// a `step` hazard on each side its workcase names goes into `verdict`, where the toe
+/// line is nearest within that side's wheel track, metres. A low step whose top is not
+/// seen in a track (its strips there still rise where the view ends,
+/// `StepRelief::unseen_top_m`) is `unknown` there instead, at the climb's foot: how
+/// high it stands is not seen. Without the
 /// margin, an 8.7 cm mound on lumpy ground, 11.3 cm over the dip before it, fitted
 /// with a face along the track stopped the rover (`sweep -- natural 200 6824 random
 /// 6` #124; the step test's sharp tops stop it since: its apex stands 11.4-11.9 cm
@@ -594,26 +597,39 @@ fn too_steep_face(
 /// found nothing, while the face analysis, seeing the rise across the track, measures
 /// a step. Higher than a wheel climbs, it stops the rover (`sweep -- families 100 5501
 /// random` #40, noisy, was a go).
-fn too_high_step(
+fn high_or_unseen_step(
     measured: &Feature,
-    step_relief: Option<f32>,
+    step_relief: Option<feature::StepRelief>,
     rover: &RoverConfig,
     verdict: &mut Verdict,
 ) -> bool {
-    let (Some(relief), Some(distance_m)) = (step_relief, measured.distance_m) else {
+    let (Some(step), Some(distance_m)) = (step_relief, measured.distance_m) else {
         return false;
     };
-    if low_step(relief, rover) {
-        return false;
+    if !low_step(step.relief_m, rover) {
+        on_toe_line(measured, distance_m, HazardKind::Step, rover, verdict);
+        return true;
     }
-    on_toe_line(measured, distance_m, HazardKind::Step, rover, verdict);
-    true
+    let unseen = [Side::Left, Side::Right]
+        .into_iter()
+        .zip(step.unseen_top_m)
+        .filter_map(|(side, foot)| foot.map(|d| (side, d)));
+    let mut found = false;
+    for (side, distance_m) in unseen {
+        verdict.add_hazard(Hazard {
+            kind: HazardKind::Unknown,
+            side,
+            distance_m: distance_m.max(0.0),
+        });
+        found = true;
+    }
+    found
 }
 
 /// Whether a step whose ground past its onsets stands `relief` metres off the ground
 /// before them is a low step a wheel climbs: within a wheel radius and the margin for
 /// rough ground's bumps ([`crossing::UNSEEN_FOOT_MARGIN_M`]). The face analysis
-/// measures such a face as a step ([`feature::analyse`]), and [`too_high_step`] lets
+/// measures such a face as a step ([`feature::analyse`]), and [`high_or_unseen_step`] lets
 /// it go.
 pub(crate) fn low_step(relief: f32, rover: &RoverConfig) -> bool {
     relief <= rover.wheel_radius_m as f32 + crossing::UNSEEN_FOOT_MARGIN_M

@@ -663,7 +663,7 @@ const FRONT_CELLS: usize = 2;
 const FRONT_LINE_M: f32 = 0.15;
 /// Least height of a cut cell's top over the tops of the front's cells before the cut
 /// for [`bends_up`], metres: the front still rises where the view ends.
-const FRONT_RISING_M: f32 = 0.01;
+pub(crate) const FRONT_RISING_M: f32 = 0.01;
 /// Least height of a cut cell's top above the smooth ground's line for [`bends_up`],
 /// metres. The ground carried on into the cell has its top at or under the line at
 /// the cell's far edge; 2 cm leaves room for depth noise, and a rock's front cut
@@ -685,7 +685,7 @@ const BENT_TALL_STRIPS: usize = 2;
 
 /// Least rise from a climb's foot to the top of the cut cells the view ends in for
 /// [`steep_exit`], metres: more than rough ground's peak to peak (±2.5 cm).
-const STEEP_EXIT_RISE_M: f32 = 0.05;
+pub(crate) const STEEP_EXIT_RISE_M: f32 = 0.05;
 /// Least rise for a climb of [`steep_exit`] to count in a band's [`broad`] test,
 /// metres: beyond what depth noise (about 1 cm at 2 m) and a cell's partial view make
 /// of level ground.
