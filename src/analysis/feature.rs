@@ -786,8 +786,9 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<StepRe
         }) && super::low_step(relief(), &f.cfg.rover)
     };
     // Stones fitted as one plane: its cells spread about it by more than rough
-    // ground's, and every strip comes back down past its top. Measured as a step from
-    // the onsets, its relief decides. A 15.1 cm cone 1.57 m out, 12.4-12.6 cm over
+    // ground's, and every strip comes back down past its top, or those that do stand
+    // too high for a low step (`stones_fall_back`). Measured as a step from the
+    // onsets, its relief decides. A 15.1 cm cone 1.57 m out, 12.4-12.6 cm over
     // the ground before it, was fitted with the corridor's other stones as a 2.8-3.1°
     // face, its cells 2.4-2.5 cm about it: a go (`sweep -- natural 200 5008 random 7`
     // #76, clean and noisy, a 320×240 camera).
