@@ -21,7 +21,8 @@
 //!    step) is measured from the onsets, with a gradient of ±90°.
 
 use super::crossing::{
-    ground_beside_face, median, unresolved_face_along, FRONT_RISING_M, STEEP_EXIT_RISE_M,
+    cut_cells, first_cut, ground_beside_face, median, unresolved_face_along, FRONT_RISING_M,
+    STEEP_EXIT_RISE_M,
 };
 use super::plane::{Plane, PlaneFit};
 use super::{Frame, Region};
@@ -878,31 +879,26 @@ const CLIMB_MIN_SLOPE: f32 = 0.1;
 
 /// Where strip `iy` still rises where its view ends, past its onset at row `from`: its
 /// last cell seen below the sensor's horizon is the one before its first cell past it
-/// (`h`), and the top of the cells past it among the three from `h` (what is seen of
-/// them lies under the image's top edge: a lower bound) stands [`FRONT_RISING_M`] over
-/// that cell's top and [`STEEP_EXIT_RISE_M`] (rough ground's peak to peak) over the
-/// strip's ground before its onset (`base`, metres), as the crossing tests'
-/// [`steep_exit`](super::crossing::steep_exit) reads a front the view ends on. Returns
-/// the climb's foot, the near edge (x, metres) of the cell from which the strip's
-/// heights (`z`) rise cell by cell to the cut by [`CLIMB_MIN_SLOPE`] or more, or
-/// `None`.
+/// (`h`, [`first_cut`]), and the top of the cells past it from `h` ([`cut_cells`]:
+/// what is seen of them lies under the image's top edge, a lower bound) stands
+/// [`FRONT_RISING_M`] over that cell's top and [`STEEP_EXIT_RISE_M`] (rough ground's
+/// peak to peak) over the strip's ground before its onset (`base`, metres), as the
+/// crossing tests' [`steep_exit`](super::crossing::steep_exit) reads a front the view
+/// ends on. Returns the climb's foot, the near edge (x, metres) of the cell from which
+/// the strip's heights (`z`) rise cell by cell to the cut by [`CLIMB_MIN_SLOPE`] or
+/// more, or `None`.
 fn climb_into_cut(f: &Frame, z: &[f32], iy: usize, from: usize, base: f32) -> Option<f32> {
     let s = f.spec;
     let below = |ix: usize| {
         let c = s.cell(ix, iy);
         f.seen[c] && !f.past[c]
     };
-    let h = (from + 1..s.nx).find(|&ix| {
-        let c = s.cell(ix, iy);
-        f.seen[c] && f.past[c]
-    })?;
+    let h = first_cut(f, iy, from + 1)?;
     if !below(h - 1) {
         return None;
     }
-    let top = (h..(h + 3).min(s.nx))
-        .map(|ix| s.cell(ix, iy))
-        .filter(|&c| f.seen[c] && f.past[c])
-        .map(|c| f.cells[c].top)
+    let top = cut_cells(f, iy, h)
+        .map(|(_, c)| c.top)
         .fold(f32::NEG_INFINITY, f32::max);
     let last = f.cells[s.cell(h - 1, iy)].top;
     if top < last + FRONT_RISING_M || top - base < STEEP_EXIT_RISE_M {

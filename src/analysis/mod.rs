@@ -610,20 +610,16 @@ fn high_or_unseen_step(
         on_toe_line(measured, distance_m, HazardKind::Step, rover, verdict);
         return true;
     }
-    let unseen = [Side::Left, Side::Right]
-        .into_iter()
-        .zip(step.unseen_top_m)
-        .filter_map(|(side, foot)| foot.map(|d| (side, d)));
-    let mut found = false;
-    for (side, distance_m) in unseen {
-        verdict.add_hazard(Hazard {
-            kind: HazardKind::Unknown,
-            side,
-            distance_m: distance_m.max(0.0),
-        });
-        found = true;
+    for (side, foot) in [Side::Left, Side::Right].into_iter().zip(step.unseen_top_m) {
+        if let Some(distance_m) = foot {
+            verdict.add_hazard(Hazard {
+                kind: HazardKind::Unknown,
+                side,
+                distance_m: distance_m.max(0.0),
+            });
+        }
     }
-    found
+    step.unseen_top_m.iter().any(Option::is_some)
 }
 
 /// Whether a step whose ground past its onsets stands `relief` metres off the ground

@@ -427,10 +427,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 };
                 z.map(|z| (f.cells[c].x, z))
             };
-            let Some(h) = (1..s.nx).find(|&ix| {
-                let c = s.cell(ix, iy);
-                f.seen[c] && f.past[c]
-            }) else {
+            let Some(h) = first_cut(f, iy, 1) else {
                 continue;
             };
             let x_h = s.x_centre(h);
@@ -446,10 +443,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             let Some(foot) = before().find(|&(_, z)| z <= base + ROUGH_SPREAD_M) else {
                 continue;
             };
-            let cut = (h..(h + 3).min(s.nx))
-                .map(|ix| (ix, s.cell(ix, iy)))
-                .filter(|&(_, c)| f.seen[c] && f.past[c])
-                .map(|(ix, c)| (ix, &f.cells[c]));
+            let cut = cut_cells(f, iy, h);
             let top = cut
                 .clone()
                 .map(|(_, c)| c.top)
@@ -509,6 +503,35 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         });
     }
 }
+
+/// Strip `iy`'s first seen cell past the sensor's horizon from row `from` on: where
+/// its view ends.
+pub(crate) fn first_cut(f: &Frame, iy: usize, from: usize) -> Option<usize> {
+    let s = f.spec;
+    (from..s.nx).find(|&ix| {
+        let c = s.cell(ix, iy);
+        f.seen[c] && f.past[c]
+    })
+}
+
+/// Strip `iy`'s seen cells past the sensor's horizon among the [`CUT_CELLS`] from its
+/// first one, `h` ([`first_cut`]), with their rows: what the view shows where it ends
+/// (what is seen of each lies under the image's top edge, a lower bound).
+pub(crate) fn cut_cells<'f>(
+    f: &'f Frame,
+    iy: usize,
+    h: usize,
+) -> impl Iterator<Item = (usize, &'f Cell)> + Clone + 'f {
+    let s = f.spec;
+    (h..(h + CUT_CELLS).min(s.nx))
+        .map(move |ix| (ix, s.cell(ix, iy)))
+        .filter(|&(_, c)| f.seen[c] && f.past[c])
+        .map(|(ix, c)| (ix, &f.cells[c]))
+}
+
+/// How many cells from where a strip's view ends [`cut_cells`] reads: 15 cm at the
+/// default voxel, a front's first centimetres past the cut.
+const CUT_CELLS: usize = 3;
 
 /// Whether strip `iy`'s cut cells (`cut`, from its first, `h`) show a front across
 /// the strip, `(face, spread)`. `face`: a cell whose points span

@@ -23,7 +23,7 @@ use faces::{
 pub(crate) use faces::{ground_beside_face, unresolved_face_along};
 pub use gaps::{gaps, GRAZING_DEG};
 pub use hidden::{blind_rise, hidden_tops, steep_exit};
-pub(crate) use hidden::{FRONT_RISING_M, STEEP_EXIT_RISE_M};
+pub(crate) use hidden::{cut_cells, first_cut, FRONT_RISING_M, STEEP_EXIT_RISE_M};
 pub use side::side_exit;
 
 /// Steps and slopes in the wheel tracks.
