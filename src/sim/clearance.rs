@@ -19,7 +19,7 @@ pub const STRIKE_MARGIN_M: f64 = 0.05;
 const SAMPLE_M: f64 = 0.01;
 
 /// The nearest distance along x (metres, from the rover's origin up to the corridor's
-/// end, rows [`SAMPLE_M`] apart) where the ground under the belly band stands more
+/// end, rows `SAMPLE_M` (1 cm) apart) where the ground under the belly band stands more
 /// than `margin_m` (metres) over the rover's underside, or `None` where it strikes
 /// nowhere. The underside at a row is the analysis' rigid body: the line between the
 /// two wheel tracks' centre lines at their ground's height there, raised by the belly
