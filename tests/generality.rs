@@ -196,6 +196,34 @@ fn a_trench_wall_whose_points_noise_scatters_still_runs_on_into_the_cut_cells() 
     trench_goes_but_posts_on_its_floor_stop(&c, (1.1142, -8.1575, 0.2227), 5_701_047, [2.82, 2.87]);
 }
 
+#[test]
+fn a_wall_cell_that_shows_no_floor_makes_no_step_but_a_block_there_does() {
+    // A -19° descent under the right track met at 32°, seen by a 320×240 camera 0.8 m
+    // high rolled -7.9° (`sweep -- oblique 100 5103 random` #38, clean). 2.78 m out,
+    // one cell of the outermost strip holds only the points of the outer wall on the
+    // corridor's edge, its floor between two rows of pixels: read at its lowest voxel,
+    // it stood 10 cm over the floor before and after it, a `step`.
+    let c = qvga(
+        mounted(
+            [0.056_870_256, -0.084_771_281, 0.800_002_204],
+            [-7.920_432_054, 29.665_157_246, 1.307_002_188],
+        ),
+        0.340_109_451,
+    );
+    let (toe, g) = (1.362_476_085, -19.046_129_842);
+    let descent = || vec![Element::ramp(toe, -0.45, g, 31.924_903_707, RIGHT_TRACK)];
+    let [clean, v] = analyse_views(descent(), &c, [None, Some(5_103_038)]);
+    assert_go(&clean, 10, toe, g, None);
+    assert_noisy_go(&v, 10, toe, g);
+    // A block 14 cm high on the floor against the wall there: its ground is seen, and
+    // the rise onto it is a step.
+    let mut scene = descent();
+    scene.push(block_at(2.7, -0.625, 0.2, 0.15, 0.14));
+    for v in analyse_views(scene, &c, [None, Some(5_103_038)]) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
 /// A descent under the right track from `toe` at `g`°, capped `cap` metres down, seen
 /// by `c` clean and with noise `seed`, is go, workcase 10, measured; with a 40 cm post
 /// 3 cm wide on its floor against the outer wall at each of `posts` (metres out), it

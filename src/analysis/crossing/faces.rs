@@ -133,11 +133,38 @@ pub(super) fn unresolved_ground(
     vs: f32,
     camera_y: f32,
 ) -> Option<f32> {
+    let away = face_away(cell, (x_mid, y_mid), vs, camera_y)?;
+    Some(if away { cell.low } else { cell.top })
+}
+
+/// For a cell [`unresolved_ground`] reads: whether its face hugs the side away from
+/// the camera (`None` for a cell it does not read).
+fn face_away(cell: &Cell, (x_mid, y_mid): (f32, f32), vs: f32, camera_y: f32) -> Option<bool> {
     if !hugs_one_side(cell, x_mid, y_mid, vs) || (camera_y - y_mid).abs() <= 0.5 * vs {
         return None;
     }
-    let away = (cell.y - y_mid).signum() != (camera_y - y_mid).signum();
-    Some(if away { cell.low } else { cell.top })
+    Some((cell.y - y_mid).signum() != (camera_y - y_mid).signum())
+}
+
+/// Whether a cell [`unresolved_ground`] reads at its lowest voxel (its face hugs the
+/// side away from the camera) shows none of its ground: its lower band centres as far
+/// to that side as all its points do (within [`ON_FACE_M`]). Ground points, the lowest
+/// of the cell's, would draw the lower band toward the strip's centre line more than
+/// they draw the mean. Its lowest voxel is then the face's, and only an upper bound
+/// on the ground: a one-track descent's outer wall on the corridor's edge, 2.8 m out
+/// and seen by a 320×240 camera, held all of one cell's points, its floor between
+/// two rows of pixels, and read 10 cm over the floor before and after it, a `step`
+/// (`sweep -- oblique 100 5103 random` #38, clean).
+pub(super) fn ground_unseen_beside_face(
+    cell: &Cell,
+    (x_mid, y_mid): (f32, f32),
+    vs: f32,
+    camera_y: f32,
+) -> bool {
+    ground_beside_face(cell, y_mid, vs).is_none()
+        && face_away(cell, (x_mid, y_mid), vs, camera_y) == Some(true)
+        && cell.foot != cell.crest
+        && (cell.foot_xy[1] - y_mid).abs() + ON_FACE_M >= (cell.y - y_mid).abs()
 }
 
 /// Whether a cell's points span [`FACE_MIN_M`] or more: two levels (a face, or a
@@ -248,6 +275,10 @@ const SPREAD_OFF_VOXELS: f32 = 0.15;
 /// side (#97, #99).
 const SPREAD_MID_SHARE: f32 = 0.2;
 
+/// How much nearer the strip's centre line than all its points a cell's lower band may
+/// centre and still lie on the face ([`ground_unseen_beside_face`]), metres: float
+/// rounding, not a ground point's pull.
+const ON_FACE_M: f32 = 0.001;
 /// Least height between a cell's two surfaces for [`ground_beside_face`] to tell
 /// them apart (and for the test of climbs the view ends in to read a belly cell at its
 /// top), metres: above rough ground's spread within one cell.
@@ -520,5 +551,65 @@ mod tests {
         assert_eq!(ground_beside_face(&fringe(0.697), MID, VS), None);
         assert!(wall_goes_on(&fringe(0.697), wall, MID, VS));
         assert!(!wall_goes_on(&fringe(0.680), wall, MID, VS));
+    }
+
+    #[test]
+    fn a_wall_cell_whose_lower_band_lies_on_the_wall_shows_no_ground() {
+        // The outermost strip of the right track, a descent's outer wall on the
+        // corridor's edge (y = -0.7), the camera 0.085 m right of the centre line
+        // (`sweep -- oblique 100 5103 random` #38, clean, 2.78 m out, to the
+        // millimetre): every point on the wall, the lowest 10 cm over the floor.
+        let (mid, camera_y) = ([2.775, -0.675], -0.085);
+        let wall = Cell {
+            n: 22,
+            x: 2.777,
+            y: -0.700,
+            z: -0.172,
+            top: -0.067,
+            peak: -0.052,
+            top_xy: [2.779, -0.700],
+            low: -0.275,
+            crest: -0.095,
+            foot: -0.249,
+            crest_xy: [2.778, -0.700],
+            foot_xy: [2.771, -0.700],
+        };
+        assert_eq!(
+            unresolved_ground(&wall, (mid[0], mid[1]), VS, camera_y),
+            Some(-0.275)
+        );
+        assert!(ground_unseen_beside_face(
+            &wall,
+            (mid[0], mid[1]),
+            VS,
+            camera_y
+        ));
+        // The cell before it: a few floor points draw its lower band 9 mm off the
+        // wall, more than they draw the mean; its lowest voxel is the floor.
+        let floor = Cell {
+            x: 2.677,
+            y: -0.696,
+            low: -0.344,
+            foot: -0.308,
+            foot_xy: [2.681, -0.691],
+            ..wall
+        };
+        let mid = (2.675, -0.675);
+        assert!(!ground_unseen_beside_face(&floor, mid, VS, camera_y));
+        // The same points with the camera beyond them: they hug the side toward it,
+        // and the cell reads its top (a ramp's side beside the belly band).
+        assert!(!ground_unseen_beside_face(&wall, (2.775, -0.675), VS, -0.9));
+        // One band only: no lower band to say where the floor is.
+        let one = Cell {
+            foot: wall.crest,
+            foot_xy: wall.crest_xy,
+            ..wall
+        };
+        assert!(!ground_unseen_beside_face(
+            &one,
+            (2.775, -0.675),
+            VS,
+            camera_y
+        ));
     }
 }

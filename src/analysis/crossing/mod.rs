@@ -17,8 +17,8 @@ pub use belly::belly;
 pub(crate) use belly::{median, track_medians};
 use climb::{strip_hazards, wheel_heights, STEP_REACH_VOXELS};
 use faces::{
-    beside_slope, clear_of_wall, cross_slope, floor_beside_fringe, fringe_of_wall, slopes_across,
-    two_levels, unresolved_ground, wall_goes_on,
+    beside_slope, clear_of_wall, cross_slope, floor_beside_fringe, fringe_of_wall,
+    ground_unseen_beside_face, slopes_across, two_levels, unresolved_ground, wall_goes_on,
 };
 pub(crate) use faces::{ground_beside_face, unresolved_face_along};
 pub use gaps::{gaps, GRAZING_DEG};
@@ -136,6 +136,10 @@ pub fn steps_and_slopes(
                 };
                 if !past && spilled(f, ix, iy, z, carried, r) {
                     // The belly band's ground, not this strip's: leave the cell out.
+                    continue;
+                }
+                if !past && over_unseen_ground(f, ix, iy, z, carried) {
+                    // A bound over the strip's course, not its ground: leave it out.
                     continue;
                 }
                 if !past {
@@ -327,6 +331,22 @@ fn ground_along(f: &Frame, ix: usize, iy: usize, past: bool) -> Option<f32> {
         return beside;
     }
     beside.or_else(|| unresolved_ground(cell, (f.spec.x_centre(ix), y_mid), vs, f.camera[1]))
+}
+
+/// Whether seen cell (`ix`, `iy`), read as `z` (metres), holds a face along its strip
+/// and none of its ground ([`ground_unseen_beside_face`]), and `z`, the face's lowest
+/// voxel, stands over the strip carried on (`carried`): the ground lies somewhere
+/// under `z`, so the reading says nothing of a rise or a fall there. A reading under
+/// the strip carried on still bounds a fall, and is kept.
+fn over_unseen_ground(f: &Frame, ix: usize, iy: usize, z: f32, carried: Option<f32>) -> bool {
+    let xy = (f.spec.x_centre(ix), f.spec.y_centre(iy));
+    carried.is_some_and(|k| z > k)
+        && ground_unseen_beside_face(
+            &f.cells[f.spec.cell(ix, iy)],
+            xy,
+            f.spec.voxel_m,
+            f.camera[1],
+        )
 }
 
 /// Cell (`ix`, `iy`)'s height on its strip's centre line when its points lie on one
