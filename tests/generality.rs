@@ -1188,6 +1188,14 @@ fn a_tall_stone_among_stones_is_a_step_though_a_stone_the_view_s_end_cuts_never_
     };
     let stop = (Decision::Stop, Side::Left, Some(HazardKind::Step));
     go_low_not_tall(field, [0.09, 0.155_121], &c, 5_008_137, stop);
+    // The step lies where the strips saw it begin (the 7.3 cm mound's front is 1.54 m
+    // out), not where the toe line fitted to the stones, met side-on, runs nearest
+    // within the track (0.56 m).
+    for v in analyse_views(field(0.155_121), &c, [None, Some(5_008_137)]) {
+        let step = v.hazards.iter().find(|h| h.kind == HazardKind::Step);
+        let at = step.expect("a step").distance_m;
+        assert!((1.45..=1.85).contains(&at), "{:?}", v.hazards);
+    }
 }
 
 #[test]

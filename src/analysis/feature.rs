@@ -804,6 +804,7 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<StepRe
     let step_relief = (gradient.abs() >= 90.0).then(|| StepRelief {
         relief_m: relief(),
         unseen_top_m: unseen_tops(f, g.z, onset, affected),
+        onset_m: nearest_onsets(f, onset, affected),
     });
     // A face met almost side-on (a side slope) has its toe line meet the reference
     // line behind the rover, or far past the corridor, or never: its distance is then
@@ -842,6 +843,29 @@ pub struct StepRelief {
     /// rise where their view ends ([`unseen_tops`]). There `relief_m` is only a lower
     /// bound.
     pub unseen_top_m: [Option<f32>; 2],
+    /// Per wheel track, `[left, right]`, the nearest onset of the step among the
+    /// track's affected strips ([`nearest_onsets`]): its cell's near edge, x, metres.
+    pub onset_m: [Option<f32>; 2],
+}
+
+/// Per wheel track, `[left, right]`, the near edge (x, metres) of the nearest onset
+/// the face's way among the track's affected strips, or `None` where it has none:
+/// where the strips saw the step begin. A face measured as a step is drawn through its
+/// onsets, so across a track its toe line runs through them; but met side-on (a
+/// stone's front read with the stones beside it) that line reaches far nearer the
+/// rover than any onset: a 15.5 cm mound 1.6-1.85 m out, behind a 7.3 cm one, made a
+/// `step` 0.56 m out (`sweep -- natural 200 5008 random 7` #137).
+fn nearest_onsets(f: &Frame, onset: &[Option<Onset>], a: Affected) -> [Option<f32>; 2] {
+    let s = f.spec;
+    let mut near: [Option<f32>; 2] = [None; 2];
+    for iy in (0..s.ny).filter(|&iy| a.chosen(f, iy)) {
+        if let Some(o) = onset[iy].filter(|o| o.dir == a.dir) {
+            let x = s.x_centre(o.ix) - 0.5 * s.voxel_m;
+            let t = &mut near[usize::from(f.region[iy] != Region::Left)];
+            *t = Some(t.map_or(x, |n| n.min(x)));
+        }
+    }
+    near
 }
 
 /// Fewest strips of a track that still rise where their view ends for [`unseen_tops`]

@@ -573,7 +573,8 @@ fn too_steep_face(
     if steep <= rover.max_slope_deg || steep >= 90.0 - 1e-3 {
         return false;
     }
-    on_toe_line(measured, distance_m, HazardKind::Slope, rover, verdict);
+    let at = (distance_m, [None; 2]);
+    on_toe_line(measured, at, HazardKind::Slope, rover, verdict);
     true
 }
 
@@ -607,7 +608,8 @@ fn high_or_unseen_step(
         return false;
     };
     if !low_step(step.relief_m, rover) {
-        on_toe_line(measured, distance_m, HazardKind::Step, rover, verdict);
+        let at = (distance_m, step.onset_m);
+        on_toe_line(measured, at, HazardKind::Step, rover, verdict);
         return true;
     }
     for (side, foot) in [Side::Left, Side::Right].into_iter().zip(step.unseen_top_m) {
@@ -633,10 +635,11 @@ pub(crate) fn low_step(relief: f32, rover: &RoverConfig) -> bool {
 
 /// A hazard of `kind` on each side a measured face's workcase names, where its toe
 /// line (through `distance_m` at the reference line, metres) is nearest within that
-/// side's wheel track.
+/// side's wheel track, or at that side's nearest onset (`onset_m`, `[left, right]`,
+/// metres) where it has one: a step's onsets are where its strips saw it begin.
 fn on_toe_line(
     measured: &Feature,
-    distance_m: f32,
+    (distance_m, onset_m): (f32, [Option<f32>; 2]),
     kind: HazardKind,
     rover: &RoverConfig,
     verdict: &mut Verdict,
@@ -653,12 +656,18 @@ fn on_toe_line(
         .alpha_deg
         .map_or(0.0, |a| f64::from(a).to_radians().tan());
     for &side in sides {
-        let sign = if side == Side::Left { 1.0 } else { -1.0 };
+        let (sign, onset) = if side == Side::Left {
+            (1.0, onset_m[0])
+        } else {
+            (-1.0, onset_m[1])
+        };
         // A line is nearest at one of the track's edges.
-        let nearest = [rover.belly_half_width_m, rover.track_outer_m]
-            .map(|y| f64::from(distance_m) - lean * (sign * y - y_ref))
-            .into_iter()
-            .fold(f64::INFINITY, f64::min);
+        let nearest = onset.map(f64::from).unwrap_or_else(|| {
+            [rover.belly_half_width_m, rover.track_outer_m]
+                .map(|y| f64::from(distance_m) - lean * (sign * y - y_ref))
+                .into_iter()
+                .fold(f64::INFINITY, f64::min)
+        });
         verdict.add_hazard(Hazard {
             kind,
             side,
