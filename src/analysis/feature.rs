@@ -858,12 +858,10 @@ pub struct StepRelief {
 fn nearest_onsets(f: &Frame, onset: &[Option<Onset>], a: Affected) -> [Option<f32>; 2] {
     let s = f.spec;
     let mut near: [Option<f32>; 2] = [None; 2];
-    for iy in (0..s.ny).filter(|&iy| a.chosen(f, iy)) {
-        if let Some(o) = onset[iy].filter(|o| o.dir == a.dir) {
-            let x = s.x_centre(o.ix) - 0.5 * s.voxel_m;
-            let t = &mut near[usize::from(f.region[iy] != Region::Left)];
-            *t = Some(t.map_or(x, |n| n.min(x)));
-        }
+    for (iy, ix) in onset_rows(f, onset, a) {
+        let x = s.x_centre(ix) - 0.5 * s.voxel_m;
+        let t = &mut near[usize::from(f.region[iy] != Region::Left)];
+        *t = Some(t.map_or(x, |n| n.min(x)));
     }
     near
 }
@@ -1029,12 +1027,18 @@ fn onset_strips<'f>(
     onset: &'f [Option<Onset>],
     a: Affected,
 ) -> impl Iterator<Item = (usize, usize, f32)> + 'f {
+    onset_rows(f, onset, a).map(move |(iy, ix)| (iy, ix, ground_before(f, z, iy, ix)))
+}
+
+/// The affected strips with an onset the face's way: each strip and its onset's row.
+fn onset_rows<'f>(
+    f: &'f Frame,
+    onset: &'f [Option<Onset>],
+    a: Affected,
+) -> impl Iterator<Item = (usize, usize)> + 'f {
     (0..f.spec.ny)
         .filter(move |&iy| a.chosen(f, iy))
-        .filter_map(move |iy| {
-            let o = onset[iy].filter(|o| o.dir == a.dir)?;
-            Some((iy, o.ix, ground_before(f, z, iy, o.ix)))
-        })
+        .filter_map(move |iy| Some((iy, onset[iy].filter(|o| o.dir == a.dir)?.ix)))
 }
 
 /// The ground strip `iy` shows before its onset at row `ix`: the mean height (`z`) of

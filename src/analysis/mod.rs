@@ -656,11 +656,8 @@ fn on_toe_line(
         .alpha_deg
         .map_or(0.0, |a| f64::from(a).to_radians().tan());
     for &side in sides {
-        let (sign, onset) = if side == Side::Left {
-            (1.0, onset_m[0])
-        } else {
-            (-1.0, onset_m[1])
-        };
+        let sign = if side == Side::Left { 1.0 } else { -1.0 };
+        let onset = onset_m[usize::from(side != Side::Left)];
         // A line is nearest at one of the track's edges.
         let nearest = onset.map(f64::from).unwrap_or_else(|| {
             [rover.belly_half_width_m, rover.track_outer_m]
