@@ -559,7 +559,7 @@ mod tests {
         // corridor's edge (y = -0.7), the camera 0.085 m right of the centre line
         // (`sweep -- oblique 100 5103 random` #38, clean, 2.78 m out, to the
         // millimetre): every point on the wall, the lowest 10 cm over the floor.
-        let (mid, camera_y) = ([2.775, -0.675], -0.085);
+        let (mid, camera_y) = ((2.775, -0.675), -0.085);
         let wall = Cell {
             n: 22,
             x: 2.777,
@@ -574,16 +574,8 @@ mod tests {
             crest_xy: [2.778, -0.700],
             foot_xy: [2.771, -0.700],
         };
-        assert_eq!(
-            unresolved_ground(&wall, (mid[0], mid[1]), VS, camera_y),
-            Some(-0.275)
-        );
-        assert!(ground_unseen_beside_face(
-            &wall,
-            (mid[0], mid[1]),
-            VS,
-            camera_y
-        ));
+        assert_eq!(unresolved_ground(&wall, mid, VS, camera_y), Some(-0.275));
+        assert!(ground_unseen_beside_face(&wall, mid, VS, camera_y));
         // The cell before it: a few floor points draw its lower band 9 mm off the
         // wall, more than they draw the mean; its lowest voxel is the floor.
         let floor = Cell {
@@ -594,22 +586,17 @@ mod tests {
             foot_xy: [2.681, -0.691],
             ..wall
         };
-        let mid = (2.675, -0.675);
-        assert!(!ground_unseen_beside_face(&floor, mid, VS, camera_y));
+        let before = (2.675, -0.675);
+        assert!(!ground_unseen_beside_face(&floor, before, VS, camera_y));
         // The same points with the camera beyond them: they hug the side toward it,
         // and the cell reads its top (a ramp's side beside the belly band).
-        assert!(!ground_unseen_beside_face(&wall, (2.775, -0.675), VS, -0.9));
+        assert!(!ground_unseen_beside_face(&wall, mid, VS, -0.9));
         // One band only: no lower band to say where the floor is.
         let one = Cell {
             foot: wall.crest,
             foot_xy: wall.crest_xy,
             ..wall
         };
-        assert!(!ground_unseen_beside_face(
-            &one,
-            (2.775, -0.675),
-            VS,
-            camera_y
-        ));
+        assert!(!ground_unseen_beside_face(&one, mid, VS, camera_y));
     }
 }
