@@ -4017,6 +4017,51 @@ fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_s
 }
 
 #[test]
+fn an_outer_edge_strip_climbing_a_sloping_side_under_the_track_is_go_but_a_post_there_stops() {
+    // A ramp under each track, their sides drawn sloping over 8.7-9.7 cm, seen by a
+    // Kinect v2 1.19 m high pitched 42° (`sweep -- bevelled 100 10312 random 9` #75,
+    // clean). The left ramp's outer side fills its outermost strip (0.65-0.7 m left):
+    // near its toe that strip sees the side whole and reads its mean, under the ramp's
+    // top; higher up the ramp hides the side's lower part and the strip reads the top.
+    // It climbed 31° where the ramp climbs 24.3°, a `slope` at 1.32 m. The track, half
+    // a metre wide, rests on the next strip inward, which climbs 24°.
+    let mut c = kinect_v2(mounted(
+        [0.263_428_174, -0.075_161_817, 1.188_719_458],
+        [-1.791_728_252, 41.961_439_453, 2.073_044_537],
+    ));
+    c.camera.min_range_m = 0.471_831_177;
+    let (toe, g) = (1.084_897_392, 24.292_596_455);
+    let ramps = |g: f64| {
+        let band = |from_m, to_m, side_m| Extent::Bevelled {
+            from_m,
+            to_m,
+            side_m,
+        };
+        vec![
+            Element::ramp(toe, 0.45, g, 0.0, band(0.2, 0.7, 0.096_550_014)),
+            Element::ramp(
+                1.445_180_661,
+                -0.45,
+                22.906_754_365,
+                0.0,
+                band(-0.7, -0.2, 0.087_434_761),
+            ),
+        ]
+    };
+    let [clean, noisy] = analyse_views(ramps(g), &c, [None, Some(10_312_075)]);
+    assert_go(&clean, 3, toe, g, None);
+    assert_noisy_go(&noisy, 3, toe, g);
+    // Too steep, or with a post 30 cm high in that strip on the ramp: never go.
+    let v = analyse(ramps(34.0), &c);
+    assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    let mut posted = ramps(g);
+    posted.push(block_at(1.5, 0.675, 0.05, 0.05, 0.3));
+    for v in analyse_views(posted, &c, [None, Some(10_312_075)]) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
+#[test]
 fn ground_falling_away_beside_a_track_over_a_sloping_edge_is_go_and_a_drop_beyond_stops() {
     // Ground falling away beyond a track's inner edge, the edge drawn sloping over
     // 10-13 cm (`Extent::Bevelled`): the belly band's edge strip holds the slope's

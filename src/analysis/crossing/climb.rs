@@ -49,7 +49,7 @@ pub(super) fn wheel_heights(strip: &mut [StripCell], r: f32) {
 /// Where the bottom of a wheel of radius `r` stands, metres, when its rim rests on
 /// ground at height `z` that lies `dx` metres (horizontally) before or behind its axle;
 /// `None` when that ground is beyond the rim's reach.
-fn on_rim(z: f32, dx: f32, r: f32) -> Option<f32> {
+pub(super) fn on_rim(z: f32, dx: f32, r: f32) -> Option<f32> {
     (dx < r).then(|| z - (r - (r * r - dx * dx).sqrt()))
 }
 

@@ -15,7 +15,7 @@ use crate::grid::Cell;
 use crate::verdict::{Side, Verdict};
 pub use belly::belly;
 pub(crate) use belly::{median, track_medians};
-use climb::{strip_hazards, wheel_heights, STEP_REACH_VOXELS};
+use climb::{on_rim, strip_hazards, wheel_heights, STEP_REACH_VOXELS};
 use faces::{
     beside_slope, clear_of_wall, cross_slope, floor_beside_fringe, fringe_of_wall,
     ground_unseen_beside_face, slopes_across, two_levels, unresolved_ground, wall_goes_on,
@@ -454,24 +454,39 @@ fn continued(last: [Option<(f32, f32)>; 2], x: f32, tan_max: f32) -> Option<f32>
 }
 
 /// Whether a rise or fall of track strip `iy` between its cells `a` and `b` is the
-/// strip reading a face along the band edge below the track's surface, not a step or
-/// slope the track meets: `iy` is the track's edge strip beside the belly band, a cell
-/// at either end holds two levels ([`two_levels`]), the next strip inward reads one
-/// surface in both rows (seen whole, not two levels) and changes between them by at
-/// most a wheel radius `r` and less steeply than the limit `tan_max`, and the higher
-/// end stands at most rough ground's spread ([`ROUGH_SPREAD_M`]) over the inner
-/// strip's surface there. The track, half a metre
-/// wide, rests on that surface; the edge strip's lower reading is the face's points.
+/// strip reading a face along the track's edge below the track's surface, not a step
+/// or slope the track meets: `iy` is the track's edge strip beside the belly band,
+/// with a cell at either end holding two levels ([`two_levels`]), or its outer edge
+/// strip, on the corridor's edge; the next strip inward reads one surface in both
+/// rows (seen whole, not two levels) and changes between them by at most a wheel
+/// radius `r` and less steeply than the limit `tan_max`; and the higher end stands at
+/// most rough ground's spread ([`ROUGH_SPREAD_M`]) over the inner strip's surface
+/// there, its wheel ([`wheel_heights`]) as much over the inner strip's wheel
+/// ([`wheel_on`]). The track, half a metre wide, rests on that surface; the edge
+/// strip's lower reading is the face's points.
 ///
 /// A one-track ramp's side, 4.4 cm wide and 0.5 m high 2.7 m out, seen by a 320×240
 /// camera: the edge strip read it as a surface sloping across, its mean 6-13 cm under
 /// the ramp's top as the share of the side's points changed from row to row, then the
 /// top: an 18 cm `step` where the inner strips climbed a smooth 21° (`sweep --
-/// bevelled 100 3006 random` #75, clean and noisy). A block or step across the track
-/// moves the inner strip with it; a post in the edge strip stands over its surface.
+/// bevelled 100 3006 random` #75, clean and noisy). A ramp's outer side, sloping over
+/// 9.7 cm, fills the outer edge strip: near the toe the strip sees it whole and reads
+/// its mean, 2.4 cm under the ramp's top, and higher up the ramp hides the side's
+/// lower part and the strip reads the top. It climbed 31° where the ramp climbs
+/// 24.3°, a `slope` (`sweep -- bevelled 100 10312 random 9` #75, clean, a Kinect v2
+/// 1.19 m high); its cells span under [`FACE_MIN_M`](faces::FACE_MIN_M), so the
+/// outer edge strip asks for no two levels. A block or step across the track moves
+/// the inner strip with it; a post in the edge strip stands over its surface, and
+/// lifts the wheels on the cells before it over the inner strip's (a 30 cm post 5 cm
+/// wide, a `step` from the cell 13 cm before it, whose own reading lay under the
+/// inner strip's).
 fn face_under_track(f: &Frame, iy: usize, ends: [&StripCell; 2], (r, tan_max): (f32, f32)) -> bool {
     let s = f.spec;
-    let Some((_, Some(inward))) = edge_strip(f, iy) else {
+    let (inward, outer) = match edge_strip(f, iy) {
+        Some((_, inward)) => (inward, false),
+        None => (outer_strip_inward(f, iy), true),
+    };
+    let Some(inward) = inward else {
         return false;
     };
     let spans = |ix: usize| two_levels(&f.cells[s.cell(ix, iy)]);
@@ -486,10 +501,35 @@ fn face_under_track(f: &Frame, iy: usize, ends: [&StripCell; 2], (r, tan_max): (
     };
     let (high, z_inner) = if b.z > a.z { (b, zb) } else { (a, za) };
     let change = (zb - za).abs();
-    (spans(a.ix) || spans(b.ix))
+    (outer || spans(a.ix) || spans(b.ix))
         && change <= r
         && change < tan_max * (b.x - a.x).abs()
         && high.z <= z_inner + ROUGH_SPREAD_M
+        && high.wheel <= wheel_on(f, inward, high, r) + ROUGH_SPREAD_M
+}
+
+/// Where a wheel of radius `r` over strip `iy`, abreast of `cell` (another strip's),
+/// rests ([`wheel_heights`]' rule on that strip's seen cells short of the horizon
+/// within `r` of it), metres; −∞ when it has none.
+fn wheel_on(f: &Frame, iy: usize, cell: &StripCell, r: f32) -> f32 {
+    let s = f.spec;
+    let reach = (r / s.voxel_m).ceil() as usize;
+    (cell.ix.saturating_sub(reach)..(cell.ix + reach + 1).min(s.nx))
+        .map(|ix| s.cell(ix, iy))
+        .filter(|&c| f.seen[c] && !f.past[c])
+        .filter_map(|c| on_rim(f.cells[c].z, (f.cells[c].x - cell.x).abs(), r))
+        .fold(f32::NEG_INFINITY, f32::max)
+}
+
+/// For a track's outer edge strip `iy` (on the corridor's edge), the next strip
+/// inward (`None` when the track has no other strip); `None` for any other strip.
+fn outer_strip_inward(f: &Frame, iy: usize) -> Option<usize> {
+    let run = f.strips(f.region[iy]);
+    match f.region[iy] {
+        Region::Left if iy + 1 == run.end && iy > run.start => Some(iy - 1),
+        Region::Right if iy == run.start && iy + 1 < run.end => Some(iy + 1),
+        _ => None,
+    }
 }
 
 /// For a track's edge strip `iy` beside the belly band, the belly strip across the
