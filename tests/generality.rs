@@ -4952,3 +4952,57 @@ fn a_pit_whose_far_wall_rises_out_of_the_image_is_never_go() {
         assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
     }
 }
+
+#[test]
+fn a_post_narrower_than_a_cell_in_a_track_stops_and_a_low_one_goes() {
+    // A post 5 cm square stands in one cell (or straddles two) with the ground seen
+    // around it in the same cells. Each such cell was read by its lower band, the
+    // ground that continues the strip, so a 30 cm post 2.2 m out made no hazard at all
+    // on flat ground, nor 1.8 m out on a 24° ramp under the track. Posts in each track,
+    // on the belly band's edge and across a strip boundary, clean and noisy.
+    let c = Config::default();
+    let post = |x: f64, y: f64, h: f64| block_at(x, y, 0.05, 0.05, h);
+    for (x, y) in [
+        (1.0, 0.45),
+        (1.6, 0.3),
+        (2.2, -0.45),
+        (2.2, 0.2),
+        (1.9, -0.6),
+    ] {
+        for v in analyse_views(vec![post(x, y, 0.3)], &c, [None, Some(42)]) {
+            assert_eq!(v.decision, Decision::Stop, "post at ({x}, {y})");
+            let side = if y > 0.0 { Side::Left } else { Side::Right };
+            assert!(
+                v.hazards.iter().any(|h| h.side == side
+                    && h.kind == HazardKind::Step
+                    && (x - 0.2..=x + 0.05).contains(&f64::from(h.distance_m))),
+                "post at ({x}, {y}): {:?}",
+                v.hazards
+            );
+        }
+        // 20 cm is still a step; 8 cm the wheel climbs.
+        let v = analyse(vec![post(x, y, 0.2)], &c);
+        assert_eq!(v.decision, Decision::Stop, "post at ({x}, {y})");
+        for v in analyse_views(vec![post(x, y, 0.08)], &c, [None, Some(42)]) {
+            assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        }
+    }
+    // On a 24° ramp under the left track.
+    let ramp = || Element::ramp(1.1, 0.45, 24.0, 0.0, LEFT_TRACK);
+    for (x, y) in [(1.8, 0.45), (1.8, 0.6), (2.0, 0.3)] {
+        for v in analyse_views(vec![ramp(), post(x, y, 0.3)], &c, [None, Some(7)]) {
+            assert_ne!(
+                v.decision,
+                Decision::Go,
+                "post at ({x}, {y}): {:?}",
+                v.feature
+            );
+        }
+        // 8 cm the wheel climbs (2 m out by the track's inner edge, the hidden ramp
+        // behind such a post, its sides vertical, is `unknown`, as before).
+        if x < 2.0 {
+            let v = analyse(vec![ramp(), post(x, y, 0.08)], &c);
+            assert_go(&v, 3, 1.1, 24.0, None);
+        }
+    }
+}

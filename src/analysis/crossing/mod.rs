@@ -7,6 +7,7 @@ mod climb;
 mod faces;
 mod gaps;
 mod hidden;
+mod posts;
 mod side;
 
 use super::plane::{Plane, PlaneFit};
@@ -24,6 +25,7 @@ pub(crate) use faces::{ground_beside_face, unresolved_face_along};
 pub use gaps::{gaps, GRAZING_DEG};
 pub use hidden::{blind_rise, hidden_tops, steep_exit};
 pub(crate) use hidden::{cut_cells, first_cut, FRONT_RISING_M, STEEP_EXIT_RISE_M};
+use posts::post_top;
 pub use side::side_exit;
 
 /// Steps and slopes in the wheel tracks.
@@ -134,11 +136,13 @@ pub fn steps_and_slopes(
                     across = mean;
                     z
                 };
-                if !past && spilled(f, ix, iy, z, carried, r) {
+                // A post beside the ground in the cell: the wheel meets its top.
+                let post = (!past).then(|| post_top(f, ix, iy, z, r)).flatten();
+                if !past && post.is_none() && spilled(f, ix, iy, z, carried, r) {
                     // The belly band's ground, not this strip's: leave the cell out.
                     continue;
                 }
-                if !past && over_unseen_ground(f, ix, iy, z, carried) {
+                if !past && post.is_none() && over_unseen_ground(f, ix, iy, z, carried) {
                     // A bound over the strip's course, not its ground: leave it out.
                     continue;
                 }
@@ -160,6 +164,7 @@ pub fn steps_and_slopes(
                     cross = across.then(|| cross_slope(cell, vs).or(cross)).flatten();
                 }
                 last = [last[1], Some((cell.x, z))];
+                let z = post.unwrap_or(z);
                 strip.push(StripCell {
                     x: cell.x,
                     z,
