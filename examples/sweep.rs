@@ -19,7 +19,9 @@
 //! does not draw (a step down under one side, a descent steeper than the limit, a
 //! block in a track, ditches, a too-steep ramp met obliquely), also on random rigs,
 //! where any verdict but go passes (a ditch whose floor the camera cannot see is
-//! unknown ground); `-- oblique N SEED`, climbable ramps up and down whose toe line
+//! unknown ground); `-- posts N SEED`, a post 3-8 cm square and 16-50 cm high in a
+//! track, on flat or rough ground or up a one-track ramp, on random rigs, where
+//! likewise any verdict but go passes; `-- oblique N SEED`, climbable ramps up and down whose toe line
 //! runs at 20-60° to the axle, on random rigs, judged go or not, except where the
 //! camera meets the surface in the tracks at under `GRAZING_DEG` (a descent as steep
 //! as the line of sight to it is not seen there): any verdict passes, and the last
@@ -443,11 +445,11 @@ impl Strike {
     }
 }
 
-/// How verdict `v` of a frame of `mode` misses `want` within `tol`: in `edges`, stop
-/// or unknown both pass (a ditch whose floor lies in its own shadow is unknown ground:
+/// How verdict `v` of a frame of `mode` misses `want` within `tol`: in `edges` and
+/// `posts`, stop or unknown both pass (a ditch whose floor lies in its own shadow is unknown ground:
 /// how deep it is, is not seen), and only a go fails.
 fn judge(mode: &str, want: &Expectation, tol: &Tolerance, v: &Verdict) -> Vec<String> {
-    if mode != "edges" {
+    if !matches!(mode, "edges" | "posts") {
         compare(want, tol, v)
     } else if v.decision == Decision::Go {
         vec![format!("go where {:?} was due", want.verdict)]
@@ -587,15 +589,17 @@ fn draw(
 ) -> (Terrain, Expectation, Config, (Tolerance, Tolerance)) {
     let tol = (CLEAN, NOISY);
     match mode {
-        // On random rigs (`edges` and `oblique` always, `hazards` when asked), each
-        // scene where its rig sees both tracks.
-        "edges" | "oblique" | "hazards" if random_rig || mode != "hazards" => {
+        // On random rigs (`edges`, `posts` and `oblique` always, `hazards` when
+        // asked), each scene where its rig sees both tracks.
+        "edges" | "posts" | "oblique" | "hazards" if random_rig || mode != "hazards" => {
             let rig = families::Rig::random(rng);
             let at = families::judged_span(&rig.config);
             let (t, w) = match mode {
                 "hazards" => random::hazard_scene_within(rng, i, at),
                 // Impassable edges the hazard sweep does not draw.
                 "edges" => random::edge_scene_within(rng, i, at),
+                // Posts narrower than a cell or two in a track.
+                "posts" => random::post_scene_within(rng, &rig.config, at),
                 // Climbable ramps up and down met obliquely.
                 _ => random::oblique_scene_within(rng, at),
             };

@@ -5,7 +5,10 @@ use rand::Rng;
 
 use super::catalogue::Expectation;
 use super::terrain::{Element, Extent, Terrain};
+use crate::config::Config;
+use crate::projection::Projector;
 use crate::verdict::{Decision, HazardKind};
+use nalgebra::Vector3;
 
 /// A passable feature scene of family `i % 8` (2, 3, 4, 5, 6, 7, 8, 9/10) with random
 /// toe distance (0.75-2 m), gradient (8-26° up, 8-20° down), toe angle (12-35°) and
@@ -230,6 +233,91 @@ pub fn edge_scene_within<R: Rng>(
     };
     (
         Terrain::new(vec![el]),
+        Expectation::decision(Decision::Stop),
+    )
+}
+
+/// A post in one wheel track, narrower than a cell or two, at a random distance in `at`,
+/// metres: 3-8 cm square, 16-50 cm high, its centre anywhere across the track band (2 cm
+/// clear of the corridor's edge, where a post centred on it is taken for a wall beyond the
+/// corridor), on flat ground, on rough ground (±2.5 cm, correlation 10-20 cm) or 0-0.6 m up
+/// a climbable ramp (10-25°) under that track. The wheel meets its top: a stop (its kind
+/// depends on how the rig sees it, so none is named). Drawn again (up to 50 times) until
+/// `config`'s camera sees its base and its top whole, within the range limits: a post
+/// beside the image is not one frame's to judge.
+pub fn post_scene_within<R: Rng>(
+    rng: &mut R,
+    config: &Config,
+    at: std::ops::Range<f64>,
+) -> (Terrain, Expectation) {
+    let p = Projector::new(
+        config,
+        config.camera.width as usize,
+        config.camera.height as usize,
+    );
+    let seen = |x: f64, y: f64, z: f64| {
+        p.project(Vector3::new(x, y, z)).is_some_and(|(u, v, d)| {
+            p.in_image(u, v)
+                && d >= config.camera.min_range_m + 0.05
+                && d <= config.camera.max_range_m - 0.05
+        })
+    };
+    let sign = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+    let kind = rng.gen_range(0..3);
+    let (up_m, gradient_deg): (f64, f64) = (rng.gen_range(0.0..0.6), rng.gen_range(10.0..25.0));
+    let (mut x, mut y, mut side_m, mut length_m, mut height_m);
+    let mut tries = 0;
+    loop {
+        x = rng.gen_range(at.clone());
+        y = sign * rng.gen_range(0.2..0.68);
+        side_m = rng.gen_range(0.03..0.08);
+        length_m = side_m * rng.gen_range(0.8..1.25);
+        height_m = rng.gen_range(0.16..0.5);
+        let base = if kind == 2 {
+            up_m * f64::tan(gradient_deg.to_radians())
+        } else {
+            0.0
+        };
+        let corners = [x, x + length_m]
+            .into_iter()
+            .flat_map(|cx| [y - side_m / 2.0, y + side_m / 2.0].map(|cy| (cx, cy)));
+        let whole = corners
+            .into_iter()
+            .all(|(cx, cy)| seen(cx, cy, base) && seen(cx, cy, base + height_m));
+        tries += 1;
+        if whole || tries == 50 {
+            break;
+        }
+    }
+    let post = Element::Block {
+        x_m: x,
+        y_m: y,
+        length_m,
+        width_m: side_m,
+        height_m,
+    };
+    let ground = match kind {
+        0 => None,
+        1 => Some(Element::Rough {
+            amplitude_m: 0.025,
+            correlation_m: rng.gen_range(0.1..0.2),
+            seed: rng.gen(),
+        }),
+        _ => Some(Element::Ramp {
+            toe_x_m: x - up_m,
+            ref_y_m: sign * 0.45,
+            gradient_deg,
+            alpha_deg: 0.0,
+            extent: Extent::Band {
+                from_m: if sign > 0.0 { 0.2 } else { -0.7 },
+                to_m: if sign > 0.0 { 0.7 } else { -0.2 },
+            },
+            cap_m: None,
+            round_m: None,
+        }),
+    };
+    (
+        Terrain::new(ground.into_iter().chain([post]).collect()),
         Expectation::decision(Decision::Stop),
     )
 }
