@@ -4,33 +4,41 @@
 use super::faces::two_levels;
 use super::{Frame, UNSEEN_FOOT_MARGIN_M};
 
-/// The height of a post standing in track cell (`ix`, `iy`), whose ground the strip reads
-/// as `z` (metres), when the cell holds one: `None` otherwise.
+/// The height of a post standing in track cell (`ix`, `iy`), whose ground the strip
+/// reads as `z` (metres), when the cell holds one: `None` otherwise.
 ///
-/// A cell with two surfaces is read by the one that continues its strip, so a face along
-/// the strip (a trench's wall, a ramp's side) makes no step. Something narrower than a
-/// cell with the ground seen around it in the same cell, a post, was then read as that
-/// ground in every cell it stands in: a post 5 cm square and 30 cm high 2.2 m out in the
-/// left track, on flat ground seen by the default rig, made no hazard at all, and neither
-/// did such posts on a 24° ramp. A post's cell has its top voxel
-/// ([`crate::grid::Cell::top`], the centroid of its highest layer with enough points, 1-3
-/// cm under a post's top) more than a wheel radius `r` and [`UNSEEN_FOOT_MARGIN_M`] over
-/// its ground, and no ground beside it at that level: the cells beside it across the
-/// strip, on either side, have their lower band more than a wheel radius under that top
-/// (their lowest voxel, where that band holds too few points to be a surface: a 3 cm
-/// post straddling a track's edge, most of it in the belly band's cell, went), and both
-/// are seen (a ramp's sloping side in the track's edge strip, the corridor's last cell,
-/// whose inner neighbour lay in a shadow, made a `step`: `sweep -- bevelled 100 10212
-/// random 9` #85).
-/// Ground beside at that level is a raised band's or a stone's the face belongs to (the
-/// belly band beside a descent under the track, a ramp's top past its sloping side, a
-/// rock's flank), which the strips there judge. Nor is there anything at that level in
-/// the cell just past it along the strip: then the face is a riser the strip climbs onto
-/// there (a step, a block), found as such, or the post goes on into that cell and is found
-/// there. (Read as a post in the riser's cell, a 25 cm step 1.6 m out under a 320×240
-/// camera was reported 6 cm nearer, at 1.45 m.) On the corridor's edge, where no strip lies beyond, a top
-/// voxel centred within a quarter of a voxel of the edge is a wall's standing beyond the
-/// corridor (a trench's outer wall), not a post.
+/// A cell with two surfaces is read by the one that continues its strip, so a face
+/// along the strip (a trench's wall, a ramp's side) makes no step. Something narrower
+/// than a cell with the ground seen around it in the same cell, a post, was then read
+/// as that ground in every cell it stands in: a post 5 cm square and 30 cm high on flat
+/// ground under the default rig went at 15 of 24 places tried 1-2.5 m out, and so did
+/// such posts on a 24° ramp.
+///
+/// A post's cell has its top voxel ([`crate::grid::Cell::top`], the centroid of its
+/// highest layer with enough points, 1-3 cm under a post's top) more than a wheel
+/// radius `r` and [`UNSEEN_FOOT_MARGIN_M`] over its ground, and:
+/// - no ground beside it at that level: the cells beside it across the strip are both
+///   seen, and their ground lies more than a wheel radius under that top. A cell's
+///   ground is its lower band, or its lowest voxel where that band holds too few points
+///   to be a surface (a 3 cm post straddling a track's edge, most of it in the belly
+///   band's cell, went). Ground beside at that level is a raised band's or a stone's,
+///   the face's (the belly band beside a descent under the track, a ramp's top past its
+///   sloping side, a rock's flank), which the strips there judge. A neighbour in a
+///   shadow may be such ground: a ramp's sloping side in the track's edge strip, in the
+///   corridor's last cell, its inner neighbour hidden, made a `step` (`sweep --
+///   bevelled 100 10212 random 9` #85).
+/// - nothing at that level in the cell just past it along the strip: else the face is a
+///   riser the strip climbs onto there (a step, a block), found as such, or the post
+///   goes on into that cell and is found there. (Read as a post in the riser's cell, a
+///   25 cm step 1.6 m out under a 320×240 camera was reported 6 cm nearer.)
+/// - on the corridor's edge, where no strip lies beyond, its top voxel centred more
+///   than a quarter of a voxel inside the edge: nearer, it is a wall's top standing
+///   beyond the corridor (a trench's outer wall).
+///
+/// [`steps_and_slopes`](super::steps_and_slopes) then meets the post's top in the cell
+/// and never leaves the cell out of its strip as ground spilled over the band edge or
+/// as a bound over unseen ground (a 6 cm post on a track's edge, most of the cell's
+/// points, read as the belly band's ground, went: `sweep -- posts 100 10419` #93).
 pub(super) fn post_top(f: &Frame, ix: usize, iy: usize, z: f32, r: f32) -> Option<f32> {
     let s = f.spec;
     let cell = &f.cells[s.cell(ix, iy)];
