@@ -21,9 +21,9 @@
 //! where any verdict but go passes (a ditch whose floor the camera cannot see is
 //! unknown ground); `-- posts N SEED`, a post 3-8 cm square and 16-50 cm high in a
 //! track, on flat or rough ground or up a one-track ramp, on random rigs, where
-//! likewise any verdict but go passes; `-- oblique N SEED`, climbable ramps up and down whose toe line
-//! runs at 20-60° to the axle, on random rigs, judged go or not, except where the
-//! camera meets the surface in the tracks at under `GRAZING_DEG` (a descent as steep
+//! likewise any verdict but go passes; `-- oblique N SEED`, climbable ramps up and
+//! down whose toe line runs at 20-60° to the axle, on random rigs, judged go or not,
+//! except where the camera meets the surface in the tracks at under `GRAZING_DEG` (a descent as steep
 //! as the line of sight to it is not seen there): any verdict passes, and the last
 //! lines count those frames; `families`, `natural`, `bevelled`, `widened` and `rounded` excuse a scene due
 //! go in the same way, its incidence taken on its planes alone (no rough ground, no
@@ -446,8 +446,8 @@ impl Strike {
 }
 
 /// How verdict `v` of a frame of `mode` misses `want` within `tol`: in `edges` and
-/// `posts`, stop or unknown both pass (a ditch whose floor lies in its own shadow is unknown ground:
-/// how deep it is, is not seen), and only a go fails.
+/// `posts`, stop or unknown both pass (a ditch whose floor lies in its own shadow is
+/// unknown ground: how deep it is, is not seen), and only a go fails.
 fn judge(mode: &str, want: &Expectation, tol: &Tolerance, v: &Verdict) -> Vec<String> {
     if !matches!(mode, "edges" | "posts") {
         compare(want, tol, v)

@@ -237,13 +237,9 @@ pub fn footprint(config: &Config) -> (f64, f64) {
     );
     let tc = config.rover.track_centre_m();
     let visible = |x: f64| {
-        [tc, -tc].iter().all(|&y| {
-            p.project(Vector3::new(x, y, 0.0)).is_some_and(|(u, v, z)| {
-                p.in_image(u, v)
-                    && z >= config.camera.min_range_m + 0.05
-                    && z <= config.camera.max_range_m - 0.05
-            })
-        })
+        [tc, -tc]
+            .iter()
+            .all(|&y| in_view(&p, config, Vector3::new(x, y, 0.0), 0.05))
     };
     let xs: Vec<f64> = (0..=600)
         .map(|i| i as f64 * 0.01)
@@ -253,6 +249,22 @@ pub fn footprint(config: &Config) -> (f64, f64) {
         (Some(&a), Some(&b)) => (a, b),
         _ => (f64::INFINITY, f64::NEG_INFINITY),
     }
+}
+
+/// Whether `p`, `config`'s camera, sees point `at` (rover frame, metres): it projects
+/// inside the image, and its depth lies within the range limits, `margin_m` clear of
+/// both.
+pub(crate) fn in_view(
+    p: &crate::projection::Projector,
+    config: &Config,
+    at: nalgebra::Vector3<f64>,
+    margin_m: f64,
+) -> bool {
+    p.project(at).is_some_and(|(u, v, d)| {
+        p.in_image(u, v)
+            && d >= config.camera.min_range_m + margin_m
+            && d <= config.camera.max_range_m - margin_m
+    })
 }
 
 /// Whether a rig that sees flat ground up to `end` metres (`footprint`) stops seeing
@@ -336,12 +348,7 @@ pub fn least_incidence_deg(terrain: &Terrain, config: &Config) -> f64 {
                 let x = i as f64 * 0.025;
                 let z = field.height(x, y);
                 let at = Vector3::new(x, y, z);
-                let inside = p.project(at).is_some_and(|(u, v, d)| {
-                    p.in_image(u, v)
-                        && d >= config.camera.min_range_m
-                        && d <= config.camera.max_range_m
-                });
-                if !inside {
+                if !in_view(&p, config, at, 0.0) {
                     continue;
                 }
                 let zx = (field.height(x + eps, y) - field.height(x - eps, y)) / (2.0 * eps);

@@ -4,6 +4,7 @@
 use rand::Rng;
 
 use super::catalogue::Expectation;
+use super::families::in_view;
 use super::terrain::{Element, Extent, Terrain};
 use crate::config::Config;
 use crate::projection::Projector;
@@ -255,13 +256,7 @@ pub fn post_scene_within<R: Rng>(
         config.camera.width as usize,
         config.camera.height as usize,
     );
-    let seen = |x: f64, y: f64, z: f64| {
-        p.project(Vector3::new(x, y, z)).is_some_and(|(u, v, d)| {
-            p.in_image(u, v)
-                && d >= config.camera.min_range_m + 0.05
-                && d <= config.camera.max_range_m - 0.05
-        })
-    };
+    let seen = |x: f64, y: f64, z: f64| in_view(&p, config, Vector3::new(x, y, z), 0.05);
     let sign = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
     let kind = rng.gen_range(0..3);
     let (up_m, gradient_deg): (f64, f64) = (rng.gen_range(0.0..0.6), rng.gen_range(10.0..25.0));

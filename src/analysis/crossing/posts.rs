@@ -3,6 +3,7 @@
 
 use super::faces::two_levels;
 use super::{Frame, UNSEEN_FOOT_MARGIN_M};
+use crate::grid::Cell;
 
 /// The height of a post standing in track cell (`ix`, `iy`), whose ground the strip
 /// reads as `z` (metres), when the cell holds one: `None` otherwise.
@@ -50,22 +51,22 @@ pub(super) fn post_top(f: &Frame, ix: usize, iy: usize, z: f32, r: f32) -> Optio
     // A cell's ground: its lower band, or where that band is too small to be a surface
     // of its own (`crest` stands for both) but the cell spans two levels, its lowest
     // voxel (a post straddling the strips' boundary, most of it in that cell).
-    let level = |jx: usize, jy: usize| {
-        let c = s.cell(jx, jy);
-        let nb = &f.cells[c];
-        let ground = if two_levels(nb) && nb.crest == nb.foot {
+    let ground = |nb: &Cell| {
+        if two_levels(nb) && nb.crest == nb.foot {
             nb.low
         } else {
             nb.foot
-        };
-        f.seen[c] && ground >= cell.top - r
+        }
     };
     let beside = [
         (iy.checked_sub(1), -1.0),
         ((iy + 1 < s.ny).then_some(iy + 1), 1.0),
     ];
     let ground_beside = beside.iter().any(|&(jy, side)| match jy {
-        Some(jy) => !f.seen[s.cell(ix, jy)] || level(ix, jy),
+        Some(jy) => {
+            let c = s.cell(ix, jy);
+            !f.seen[c] || ground(&f.cells[c]) >= cell.top - r
+        }
         None => (y_mid + side * 0.5 * vs - cell.top_xy[1]).abs() < 0.25 * vs,
     });
     let ground_past = ix + 1 < s.nx && {
