@@ -4987,6 +4987,20 @@ fn a_post_narrower_than_a_cell_in_a_track_stops_and_a_low_one_goes() {
             assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
         }
     }
+    // A post 4 cm square and 17 cm high just inside a track's edge with the belly band.
+    // The edge strip reads such a cell by its mean (the post's face and the ground, one
+    // surface sloping across the cell), 6-10 cm over the ground, so the post's top stood
+    // under a wheel radius over that reading and went at 12 of 42 places tried (`sweep
+    // -- posts 100 10523` #97). It is measured from the cell's lowest voxel.
+    let slim = |x: f64, y: f64, h: f64| block_at(x, y, 0.04, 0.04, h);
+    for (x, y) in [(1.4, 0.22), (1.7, 0.213), (1.7, -0.22), (2.3, -0.205)] {
+        for v in analyse_views(vec![slim(x, y, 0.17)], &c, [None, Some(42)]) {
+            assert_ne!(v.decision, Decision::Go, "post at ({x}, {y})");
+        }
+        for v in analyse_views(vec![slim(x, y, 0.08)], &c, [None, Some(42)]) {
+            assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        }
+    }
     // On a 24° ramp under the left track.
     let ramp = || Element::ramp(1.1, 0.45, 24.0, 0.0, LEFT_TRACK);
     for (x, y) in [(1.8, 0.45), (1.8, 0.6), (2.0, 0.3)] {

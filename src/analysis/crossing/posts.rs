@@ -18,6 +18,11 @@ use crate::grid::Cell;
 /// A post's cell has its top voxel ([`crate::grid::Cell::top`], the centroid of its
 /// highest layer with enough points, 1-3 cm under a post's top) more than a wheel
 /// radius `r` and [`UNSEEN_FOOT_MARGIN_M`] over its ground, and:
+/// - its ground is the strip's reading `z` or, where lower, the cell's lowest voxel
+///   ([`crate::grid::Cell::low`]). A track's edge strip may read a cell by its mean,
+///   the post's face and the ground as one surface sloping across the cell: a 17 cm
+///   post just inside the edge, read 10 cm high there, went (`sweep -- posts 100
+///   10523` #97).
 /// - no ground beside it at that level: the cells beside it across the strip are both
 ///   seen, and their ground lies more than a wheel radius under that top. A cell's
 ///   ground is its lower band, or its lowest voxel where that band holds too few points
@@ -43,6 +48,7 @@ use crate::grid::Cell;
 pub(super) fn post_top(f: &Frame, ix: usize, iy: usize, z: f32, r: f32) -> Option<f32> {
     let s = f.spec;
     let cell = &f.cells[s.cell(ix, iy)];
+    let z = z.min(cell.low);
     if cell.top - z <= r + UNSEEN_FOOT_MARGIN_M {
         return None;
     }
