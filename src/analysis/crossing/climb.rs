@@ -319,16 +319,19 @@ fn climb_slope(
 /// The slope |dz/dx| of a rough ramp that rises out of the view less than 0.9 of a
 /// wheelbase past the run `strip[i..=j]`, so that [`line_windows`] has no window
 /// ahead: over the wheelbase of contiguous cells seen whole that ends where the view
-/// does (the next cell past the horizon, or none), the best two lines joined at a
-/// hinge at or before the run's start (the ground before the ramp's toe, the ramp
-/// after it), when they explain the cells within rough ground's spread
-/// ([`ROUGH_LINE_RMS_M`]) and the ramp's line is at least [`VIEW_END_RAMP_M`] long;
-/// the ramp line's slope plus twice its standard error (so a rough ramp just over
+/// does (the next cell past the horizon, or none), reaching back at least two cells
+/// before the run's start, the best two lines joined at a hinge at or before the run's
+/// start (the ground before the ramp's toe, the ramp after it), when they explain the
+/// cells within rough ground's spread ([`ROUGH_LINE_RMS_M`]) and the ramp's line is
+/// at least [`VIEW_END_RAMP_M`] long; the ramp line's slope plus twice its standard error (so a rough ramp just over
 /// the limit is not let through by its bumps: over 0.45 m of ramp on ±2.5 cm
 /// ground the standard error is about 1.3°). A ramp's own slope, not a dip-to-bump
 /// run's: on ±2.5 cm ground 0.2 m of a 24° ramp can climb 32°. A short bank and the
 /// flat above it are not one line after the hinge, and keep their steepness; so does
-/// a ramp seen for less than [`VIEW_END_RAMP_M`].
+/// a ramp seen for less than [`VIEW_END_RAMP_M`]. (A wheelbase back from the view's
+/// end alone may start a cell before the run, leaving no line before a hinge there: a
+/// 23.3° rough ramp whose bumps climbed 30.4° over 0.2 m, 0.5 m before the view ended,
+/// was a `slope`: `sweep -- rounded 100 10515 random` #27, clean and noisy.)
 fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Option<f32> {
     if strip[i].past {
         return None;
@@ -339,7 +342,13 @@ fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Op
     if !view_ends || end < i || strip[end].x - strip[i].x >= 0.9 * wheelbase {
         return None;
     }
-    let start = reach_back(strip, i, 1, (strip[end].x, wheelbase));
+    // A wheelbase back from where the view ends, and at least two cells before the
+    // run's start where they are seen, so that a hinge at the run's start has a line
+    // before it.
+    let mut start = reach_back(strip, i, 1, (strip[end].x, wheelbase));
+    while start + 2 > i && start > 0 && joined(strip, start - 1, 1) {
+        start -= 1;
+    }
     let window = &strip[start..=end];
     // Two cells at least on the line before the hinge, so that it is a line.
     (start + 2..=i)
@@ -733,6 +742,78 @@ mod tests {
         );
         // ...but the wheelbase they lie on is a 25° line.
         assert!(slopes(|x| k * x + rough(x)).is_empty());
+    }
+
+    /// Cell x and wheel heights along a left-track strip up a 23.3° ramp with a toe
+    /// rounded over 0.36 m at 1.04 m, on ±2.5 cm ground, 0.94-1.83 m, the next cell
+    /// past the horizon (`sweep -- rounded 100 10515 random` #27, clean, Kinect v1
+    /// 0.9 m high pitched 38°).
+    const RAMP_TO_VIEW_END: [(f32, f32); 20] = [
+        (0.935, 0.0066),
+        (0.977, 0.0016),
+        (1.025, 0.0017),
+        (1.075, 0.0151),
+        (1.125, 0.0348),
+        (1.174, 0.0550),
+        (1.2246, 0.0745),
+        (1.275, 0.0945),
+        (1.325, 0.1182),
+        (1.375, 0.1465),
+        (1.425, 0.1775),
+        (1.475, 0.2079),
+        (1.525, 0.2339),
+        (1.575, 0.2540),
+        (1.625, 0.2690),
+        (1.674, 0.2812),
+        (1.724, 0.2946),
+        (1.775, 0.3133),
+        (1.8253, 0.3255),
+        (1.865, 0.3507),
+    ];
+
+    /// The slope hazards on [`RAMP_TO_VIEW_END`] with `extra` added to the heights
+    /// from 1.2 m on, times the distance past it.
+    fn slopes_to_view_end(extra: f32) -> Vec<Hazard> {
+        let n = RAMP_TO_VIEW_END.len();
+        let run: Vec<StripCell> = RAMP_TO_VIEW_END
+            .iter()
+            .enumerate()
+            .map(|(i, &(x, z))| {
+                let z = z + extra * (x - 1.2).max(0.0);
+                StripCell {
+                    x,
+                    z,
+                    ix: 18 + i,
+                    past: i + 1 == n,
+                    peak: z,
+                    high: z,
+                    wheel: z,
+                }
+            })
+            .collect();
+        let mut v = Verdict::default();
+        strip_hazards(
+            &run,
+            Region::Left,
+            (0.11, 30f32.to_radians().tan(), 0.6, 2),
+            (VS, false),
+            &|_, _| false,
+            &mut v,
+        );
+        v.hazards.retain(|h| h.kind == HazardKind::Slope);
+        v.hazards.to_vec()
+    }
+
+    #[test]
+    fn a_rough_ramp_rising_out_of_view_half_a_wheelbase_past_a_steep_run_is_its_line() {
+        // 1.325-1.525 m climbs 30.4° on the bumps, 0.5 m before the view ends: no
+        // window of a wheelbase lies on the ramp ahead, and the wheelbase back from the
+        // view's end began one cell before the run, leaving no line before a hinge there.
+        // The ramp from two cells before the run to the view's end is a 22.3° line.
+        assert!(slopes_to_view_end(0.0).is_empty());
+        // The same cells on a ramp 34° steep (its 30° run steeper still) stop.
+        let extra = 34f32.to_radians().tan() - 23.3f32.to_radians().tan();
+        assert!(!slopes_to_view_end(extra).is_empty());
     }
 
     #[test]
