@@ -791,17 +791,9 @@ mod tests {
                 }
             })
             .collect();
-        let mut v = Verdict::default();
-        strip_hazards(
-            &run,
-            Region::Left,
-            (0.11, 30f32.to_radians().tan(), 0.6, 2),
-            (VS, false),
-            &|_, _| false,
-            &mut v,
-        );
-        v.hazards.retain(|h| h.kind == HazardKind::Slope);
-        v.hazards.to_vec()
+        let mut h = hazards_of(&run);
+        h.retain(|h| h.kind == HazardKind::Slope);
+        h
     }
 
     #[test]
@@ -973,9 +965,16 @@ mod tests {
         let mut run = strip(&(0..30).map(|i| z(0.05 * i as f32)).collect::<Vec<_>>());
         run.retain(|c| !unseen.contains(&(c.ix - 20)));
         wheel_heights(&mut run, 0.11);
+        hazards_of(&run)
+    }
+
+    /// The hazards `strip_hazards` reports on the left track's strip `run`, its wheel
+    /// heights as set (wheel radius 0.11 m, limit 30°, wheelbase 0.6 m, gaps from 2
+    /// cells).
+    fn hazards_of(run: &[StripCell]) -> Vec<Hazard> {
         let mut v = Verdict::default();
         strip_hazards(
-            &run,
+            run,
             Region::Left,
             (0.11, 30f32.to_radians().tan(), 0.6, 2),
             (VS, false),
