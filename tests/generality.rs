@@ -5001,6 +5001,23 @@ fn a_post_narrower_than_a_cell_in_a_track_stops_and_a_low_one_goes() {
             assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
         }
     }
+    // Depth noise carries a few of a post's points into the cell past it, over a
+    // wheel radius under its top: that is no riser the strip climbs onto, whose cell
+    // has its upper surface there. A 22.7 cm post 3.5 × 3.1 cm, 0.58 m up a 20.8° ramp
+    // under the left track, seen by a Kinect v1 1.13 m high pitched 36.6° and yawed
+    // 7.5° (`sweep -- posts 100 10527` #5, noisy) went.
+    let mut c5 = mounted(
+        [0.205_788, -0.000_789, 1.129_912],
+        [0.213_730, 36.577_642, 7.525_138],
+    );
+    c5.camera.min_range_m = 0.336_632;
+    let scene = vec![
+        Element::ramp(1.481_136, 0.45, 20.817_751, 0.0, LEFT_TRACK),
+        block_at(2.064_986, 0.527_012, 0.034_939, 0.031_137, 0.227_087),
+    ];
+    for v in analyse_views(scene, &c5, [None, Some(10_527_005)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+    }
     // On a 24° ramp under the left track.
     let ramp = || Element::ramp(1.1, 0.45, 24.0, 0.0, LEFT_TRACK);
     for (x, y) in [(1.8, 0.45), (1.8, 0.6), (2.0, 0.3)] {

@@ -33,10 +33,16 @@ use crate::grid::Cell;
 ///   shadow may be such ground: a ramp's sloping side in the track's edge strip, in the
 ///   corridor's last cell, its inner neighbour hidden, made a `step` (`sweep --
 ///   bevelled 100 10212 random 9` #85).
-/// - nothing at that level in the cell just past it along the strip: else the face is a
-///   riser the strip climbs onto there (a step, a block), found as such, or the post
-///   goes on into that cell and is found there. (Read as a post in the riser's cell, a
-///   25 cm step 1.6 m out under a 320×240 camera was reported 6 cm nearer.)
+/// - no surface at that level in the two cells just past it along the strip (their
+///   upper band, [`crate::grid::Cell::crest`]): else the face is a riser the strip
+///   climbs onto there (a step, a block), found as such, or the post goes on into
+///   that cell and is found there. (Read as a post in the riser's cell, a 25 cm step
+///   1.6 m out under a 320×240 camera was reported 6 cm nearer; the cell just past
+///   that riser, its face and a little of its top, has no upper band, and the next
+///   one has.) A few of the post's own points that depth noise carries into the cell
+///   past it, too few to be a surface, are none: with that cell's top voxel asked
+///   instead, a 22.7 cm post on a 20.8° ramp went (`sweep -- posts 100 10527` #5,
+///   noisy).
 /// - on the corridor's edge, where no strip lies beyond, its top voxel centred more
 ///   than a quarter of a voxel inside the edge: nearer, it is a wall's top standing
 ///   beyond the corridor (a trench's outer wall).
@@ -75,9 +81,9 @@ pub(super) fn post_top(f: &Frame, ix: usize, iy: usize, z: f32, r: f32) -> Optio
         }
         None => (y_mid + side * 0.5 * vs - cell.top_xy[1]).abs() < 0.25 * vs,
     });
-    let ground_past = ix + 1 < s.nx && {
-        let c = s.cell(ix + 1, iy);
-        f.seen[c] && f.cells[c].top >= cell.top - r
-    };
+    let ground_past = (ix + 1..(ix + 3).min(s.nx)).any(|k| {
+        let c = s.cell(k, iy);
+        f.seen[c] && f.cells[c].crest >= cell.top - r
+    });
     (!ground_beside && !ground_past).then_some(cell.top)
 }
