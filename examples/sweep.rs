@@ -23,11 +23,11 @@
 //! track, on flat or rough ground or up a one-track ramp, on random rigs, where
 //! likewise any verdict but go passes; `-- oblique N SEED`, climbable ramps up and
 //! down whose toe line runs at 20-60° to the axle, on random rigs, judged go or not,
-//! except where the camera meets the surface in the tracks at under `GRAZING_DEG` (a descent as steep
-//! as the line of sight to it is not seen there): any verdict passes, and the last
-//! lines count those frames; `families`, `natural`, `bevelled`, `widened` and `rounded` excuse a scene due
-//! go in the same way, its incidence taken on its planes alone (no rough ground, no
-//! stones, each band's sides drawn vertical).
+//! except where the camera meets the surface in the tracks at under `GRAZING_DEG` (a
+//! descent as steep as the line of sight to it is not seen there): any verdict
+//! passes, and the last lines count those frames; `families`, `natural`, `bevelled`,
+//! `widened` and `rounded` excuse a scene due go in the same way, its incidence taken
+//! on its planes alone (no rough ground, no stones, each band's sides drawn vertical).
 //! `ONLY=3,7` checks
 //! just those scenes of the sweep. The last line counts the failures and, of them,
 //! the gos where a stop was due. `DUMP=DIR` writes each failing scene's terrain

@@ -9,12 +9,14 @@
 //! cannot see a feature at all (the toe of a ramp below the image), the draw is kept
 //! inside what the rig sees, so that the expectation stays decidable.
 
+use nalgebra::Vector3;
 use rand::Rng;
 
 use super::catalogue::Expectation;
 use super::terrain::{Element, Extent, StoneShape, Terrain};
 use super::{Tolerance, CLEAN, NOISY};
 use crate::config::Config;
+use crate::projection::Projector;
 use crate::verdict::{Decision, HazardKind};
 
 /// A family of random scenes.
@@ -229,8 +231,7 @@ impl Rig {
 /// projecting ground points: the span where both points are inside the image and
 /// the range limits.
 pub fn footprint(config: &Config) -> (f64, f64) {
-    use nalgebra::Vector3;
-    let p = crate::projection::Projector::new(
+    let p = Projector::new(
         config,
         config.camera.width as usize,
         config.camera.height as usize,
@@ -254,12 +255,7 @@ pub fn footprint(config: &Config) -> (f64, f64) {
 /// Whether `p`, `config`'s camera, sees point `at` (rover frame, metres): it projects
 /// inside the image, and its depth lies within the range limits, `margin_m` clear of
 /// both.
-pub(crate) fn in_view(
-    p: &crate::projection::Projector,
-    config: &Config,
-    at: nalgebra::Vector3<f64>,
-    margin_m: f64,
-) -> bool {
+pub(crate) fn in_view(p: &Projector, config: &Config, at: Vector3<f64>, margin_m: f64) -> bool {
     p.project(at).is_some_and(|(u, v, d)| {
         p.in_image(u, v)
             && d >= config.camera.min_range_m + margin_m
@@ -324,8 +320,7 @@ pub fn rough_ramp_at_view_end<R: Rng>(rng: &mut R, config: &Config) -> Option<(T
 /// it ignores what else stands in the way (a track's side walls), so it never
 /// excuses more than the surface's own slope hides.
 pub fn least_incidence_deg(terrain: &Terrain, config: &Config) -> f64 {
-    use nalgebra::Vector3;
-    let p = crate::projection::Projector::new(
+    let p = Projector::new(
         config,
         config.camera.width as usize,
         config.camera.height as usize,

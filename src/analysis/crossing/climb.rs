@@ -323,15 +323,16 @@ fn climb_slope(
 /// before the run's start, the best two lines joined at a hinge at or before the run's
 /// start (the ground before the ramp's toe, the ramp after it), when they explain the
 /// cells within rough ground's spread ([`ROUGH_LINE_RMS_M`]) and the ramp's line is
-/// at least [`VIEW_END_RAMP_M`] long; the ramp line's slope plus twice its standard error (so a rough ramp just over
-/// the limit is not let through by its bumps: over 0.45 m of ramp on ±2.5 cm
-/// ground the standard error is about 1.3°). A ramp's own slope, not a dip-to-bump
-/// run's: on ±2.5 cm ground 0.2 m of a 24° ramp can climb 32°. A short bank and the
-/// flat above it are not one line after the hinge, and keep their steepness; so does
-/// a ramp seen for less than [`VIEW_END_RAMP_M`]. (A wheelbase back from the view's
-/// end alone may start a cell before the run, leaving no line before a hinge there: a
-/// 23.3° rough ramp whose bumps climbed 30.4° over 0.2 m, 0.5 m before the view ended,
-/// was a `slope`: `sweep -- rounded 100 10515 random` #27, clean and noisy.)
+/// at least [`VIEW_END_RAMP_M`] long; the ramp line's slope plus twice its standard
+/// error (so a rough ramp just over the limit is not let through by its bumps: over
+/// 0.45 m of ramp on ±2.5 cm ground the standard error is about 1.3°). A ramp's own
+/// slope, not a dip-to-bump run's: on ±2.5 cm ground 0.2 m of a 24° ramp can climb
+/// 32°. A short bank and the flat above it are not one line after the hinge, and
+/// keep their steepness; so does a ramp seen for less than [`VIEW_END_RAMP_M`]. (A
+/// wheelbase back from the view's end alone may start a cell before the run, leaving
+/// no line before a hinge there: a 23.3° rough ramp whose bumps climbed 30.4° over
+/// 0.2 m, 0.5 m before the view ended, was a `slope`: `sweep -- rounded 100 10515
+/// random` #27, clean and noisy.)
 fn view_end_slope(strip: &[StripCell], i: usize, j: usize, wheelbase: f32) -> Option<f32> {
     if strip[i].past {
         return None;
