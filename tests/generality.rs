@@ -5,7 +5,7 @@
 //! geometry and the rover's limits.
 
 use rover_terrain::sim::{Element, Extent, StoneShape, Terrain};
-use rover_terrain::{Config, Decision, HazardKind, Side, Verdict};
+use rover_terrain::{Config, Decision, Hazard, HazardKind, Side, Verdict};
 
 #[path = "common/hazards.rs"]
 mod hazards;
@@ -1386,8 +1386,13 @@ fn a_stone_with_a_broad_dip_of_lumpy_ground_past_it_is_climbed_down() {
     // stones. Past an 8.6 cm stone in the right track the ground lies in a dip 0.3 m
     // wide, then rises 4.5 cm: from the stone's top the strip falls 11.7 cm, over a
     // wheel radius, into the dip. Over the wheelbase past it the ground is level within
-    // its bumps (`sweep -- natural 200 7022 random 6` #187, clean and noisy, a `step`).
-    // The same stone 15 cm high stops.
+    // its bumps (`sweep -- natural 200 7022 random 6` #187, clean and noisy, a `step`):
+    // no step. The stone's top lies beside the image's right edge (the sweep's sight
+    // test: `a top at (1.20, -0.51, 0.100) m out of view`), its flank seen climbing
+    // 8.3 cm over two strips into that edge, 4.1 cm the last: a flank taken to climb
+    // on as much beside the image stands over a wheel radius, `unknown`
+    // (`a_cone_beside_the_image_whose_flank_climbs_on_into_its_edge_is_unknown`).
+    // The same stone 15 cm high is never go.
     let c = qvga(
         mounted([0.2248, 0.0351, 1.0024], [9.1610, 31.9609, 6.3007]),
         0.3655,
@@ -1406,7 +1411,14 @@ fn a_stone_with_a_broad_dip_of_lumpy_ground_past_it_is_climbed_down() {
             Element::stone(2.7799, 0.5242, 0.0767, 0.0426, StoneShape::Cap),
         ]
     };
-    go_low_stop_tall(field, 0.0863, &c, 7_022_187, (Side::Right, None));
+    for v in analyse_views(field(0.0863), &c, [None, Some(7_022_187)]) {
+        assert_eq!(v.decision, Decision::Unknown, "{:?}", v.hazards);
+        let unknown = |h: &Hazard| h.kind == HazardKind::Unknown && h.side == Side::Right;
+        assert!(v.hazards.iter().all(unknown), "{:?}", v.hazards);
+    }
+    for v in analyse_views(field(0.15), &c, [None, Some(7_022_187)]) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.hazards);
+    }
 }
 
 #[test]
@@ -4331,6 +4343,62 @@ fn a_cone_whose_flank_climbs_into_the_image_s_side_edge_is_unknown() {
     };
     let unknown = (Decision::Unknown, Side::Right, Some(HazardKind::Unknown));
     go_low_not_tall(field, [0.09, 0.1881], &c, 7_334_130, unknown);
+}
+
+#[test]
+fn a_cone_beside_the_image_whose_flank_climbs_on_into_its_edge_is_unknown() {
+    // What a flank shows at the image's side edge is a lower bound: it climbs on past
+    // it. Two cones whose apex lies beside the image went, clean and noisy, their
+    // flank seen 10-10.6 cm up, under a wheel radius.
+    // A 320×240 camera 0.56 m high, pitched 18°, rolled 2.3° and yawed −3.6°, over
+    // lumpy ground with stones (`sweep -- natural 200 10208 random 7` #153): a 16.8 cm
+    // cone 1.08 m out in the left track, its flank climbing 9.7 cm over three strips
+    // toward the image's left edge, the last strip 2.7 cm.
+    let mut c = qvga(
+        mounted([0.1910, -0.0191, 0.5646], [2.3318, 17.9806, -3.6423]),
+        0.3495,
+    );
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.137_407_579,
+                seed: 8_525_058_789_164_001_605,
+            },
+            Element::stone(2.6512, 0.3779, 0.0947, 0.0706, StoneShape::Cone),
+            Element::stone(2.4187, -0.5454, 0.1536, 0.0892, StoneShape::Cone),
+            Element::stone(2.5295, 0.6277, 0.0978, 0.0602, StoneShape::Cone),
+            Element::stone(1.1850, 0.3358, 0.0776, 0.0557, StoneShape::Cone),
+            Element::stone(1.2564, 0.6093, 0.1104, 0.0588, StoneShape::Cap),
+            Element::stone(1.0808, 0.5433, 0.1998, height_m, StoneShape::Cone),
+        ]
+    };
+    let unknown = |side| (Decision::Unknown, side, Some(HazardKind::Unknown));
+    go_low_not_tall(field, [0.12, 0.168], &c, 10_208_153, unknown(Side::Left));
+    // A Kinect v1 0.54 m high, pitched 32°, rolled −10° and yawed 1°, over lumpy
+    // ground with stones (`sweep -- natural 200 10708 random 7` #164): a 19.5 cm cone
+    // 1.0 m out in the right track, its apex beside the image's right edge, behind a
+    // 7 cm boulder whose top the inner strips see. Across, the flank climbs only 3.4
+    // cm from the boulder's top; along the edge strip, 10.6 cm from the ground 0.15 m
+    // before it, steeper than the slope limit.
+    c = mounted([0.2767, -0.0027, 0.5355], [-9.9544, 32.1010, 1.0625]);
+    c.camera.min_range_m = 0.4134;
+    let field = |height_m: f64| {
+        vec![
+            Element::Lumpy {
+                amplitude_m: 0.025,
+                spacing_m: 0.148_834_710,
+                seed: 12_493_629_855_614_799_832,
+            },
+            Element::stone(2.7862, -0.6236, 0.0797, 0.0563, StoneShape::Boulder),
+            Element::stone(0.9733, -0.3475, 0.1078, 0.0709, StoneShape::Boulder),
+            Element::stone(2.1719, 0.3185, 0.0929, 0.0522, StoneShape::Cap),
+            Element::stone(2.4227, 0.4623, 0.1466, 0.0781, StoneShape::Cap),
+            Element::stone(2.0875, -0.4496, 0.1163, 0.0683, StoneShape::Cone),
+            Element::stone(0.9995, -0.5492, 0.1810, height_m, StoneShape::Cone),
+        ]
+    };
+    go_low_not_tall(field, [0.12, 0.195], &c, 10_708_164, unknown(Side::Right));
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! Rises the image's side edge cuts: a stone in a track whose flank the camera sees
 //! climbing toward the left or right edge of its image, its top beside the view.
 
-use super::{followed, unknown_judged, Frame, Region};
+use super::{followed, unknown_judged, Frame, Region, STEP_REACH_VOXELS};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
 /// Fewest strips across that a rise into the image's side edge must climb over, each
@@ -23,20 +23,36 @@ const SIDE_EXIT_MAX_STRIPS: usize = 4;
 /// judge it; across the track its foot is seen. So where, in a row of a track, the
 /// ground the strips follow rises toward a cell outside the image (neither expected
 /// on flat ground nor seen), rising across each of the [`SIDE_EXIT_MIN_STRIPS`] to
-/// [`SIDE_EXIT_MAX_STRIPS`] strips before it, more than a wheel radius from that foot
-/// and steeper than the slope limit (what the step test stops along a strip), the
-/// track is unknown at the nearest such row: an 18.8 cm cone 1.24 m out, a camera
-/// yawed 6.4° seeing its flank rise 12.1 cm over 0.2 m toward the image's right
-/// edge, was a go (`sweep -- natural 200 7334 random 7` #130). What is seen of it is
-/// a lower bound, as at the image's top edge.
+/// [`SIDE_EXIT_MAX_STRIPS`] strips before it, steeper than the slope limit (what the
+/// step test stops along a strip), the track is unknown at the nearest such row
+/// where the rise would pass a wheel radius one strip beside the image: an 18.8 cm
+/// cone 1.24 m out, a camera yawed 6.4° seeing its flank rise 12.1 cm over 0.2 m
+/// toward the image's right edge, was a go (`sweep -- natural 200 7334 random 7`
+/// #130). What is seen of it is a lower bound, as at the image's top edge.
+///
+/// One strip beside the image, the flank is taken to climb on as much as its last strip
+/// did, into the edge strip: a 16.8 cm cone seen climbing 9.7 cm over three strips (2.7
+/// cm the last; 10.1 cm over four, gentler than the limit) went (`sweep -- natural 200
+/// 10208 random 7` #153). Each foot from the second strip on is tried. The rise is
+/// measured from the foot across the track or, if it climbs more, from the ground along
+/// the edge strip within a step's reach before it (steeper than the limit there too): a
+/// 19.5 cm cone behind a 7 cm boulder, its flank seen only 3.4 cm over the boulder's
+/// top across the track but 10.6 cm over the ground 0.15 m before it along the strip,
+/// went (`natural 200 10708 random 7` #164). Cones beside the image in those two scenes
+/// now stop from 15 cm up (from 20 and 22 cm before). What is seen cannot tell such a
+/// cone from a pebble whose top the edge cuts: of 28,800 sweep frames, this turned 8
+/// that went where a stop was due `unknown`, 24 whose stone's top lies beside the
+/// image, and 5 that were due go (boulders of 8.3-8.6 cm whose top the image just
+/// holds, their flank cut near it).
 ///
 /// A ramp, straight or diagonal, rises along the track: across it the ground climbs
-/// gently (a 25° ramp at 26° to the rover, 11°). The track's edge strips take no
-/// part: a one-track ramp's side face, drawn vertical or sloping, lies in them. A rise
-/// of 5 cm, as the top edge's test asks (`steep_exit`), is what a pebble's flank cut
-/// by the edge shows: 31 of 1,800 frames of pebble fields due go turned `unknown`
-/// with it (`natural 200 9303 random 6`, `natural 200 9702 random 6`, ...), stones of
-/// 6.5-9 cm. A hazard already found on that side, or nearer, stands.
+/// gently (a 25° ramp at 26° to the rover, 11°), and along it under the limit. The
+/// track's edge strips take no part: a one-track ramp's side face, drawn vertical or
+/// sloping, lies in them. A rise of 5 cm, as the top edge's test asks
+/// (`steep_exit`), is what a pebble's flank cut by the edge shows: 31 of 1,800
+/// frames of pebble fields due go turned `unknown` with it (`natural 200 9303 random
+/// 6`, `natural 200 9702 random 6`, ...), stones of 6.5-9 cm. A hazard already found
+/// on that side, or nearer, stands.
 pub fn side_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let s = f.spec;
     let tan_max = (f.cfg.rover.max_slope_deg as f32).to_radians().tan();
@@ -65,8 +81,10 @@ pub fn side_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             let Some(top) = ground(ix, iy) else {
                 return false;
             };
-            // Down the flank, away from the edge, while each strip lies lower.
-            let (mut foot, mut at, mut strips) = (top, iy, 0);
+            // Down the flank, away from the edge, while each strip lies lower. The
+            // flank's last step, into the edge strip, is how much more it climbs over
+            // the first strip beside the image.
+            let (mut foot, mut at, mut strips, mut climb_on) = (top, iy, 0, 0.0);
             while strips < SIDE_EXIT_MAX_STRIPS {
                 let Some(next) = at.checked_add_signed(-toward).filter(|&n| inner(n)) else {
                     break;
@@ -75,10 +93,27 @@ pub fn side_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                     Some(z) if z < foot => (foot, at, strips) = (z, next, strips + 1),
                     _ => break,
                 }
+                if strips == 1 {
+                    climb_on = top - foot;
+                }
+                let run = (s.y_centre(iy) - s.y_centre(at)).abs();
+                if strips >= SIDE_EXIT_MIN_STRIPS
+                    && top - foot + climb_on > r
+                    && top - foot >= tan_max * run
+                {
+                    return true;
+                }
             }
-            let rise = top - foot;
-            let run = (s.y_centre(iy) - s.y_centre(at)).abs();
-            strips >= SIDE_EXIT_MIN_STRIPS && rise > r && rise >= tan_max * run
+            if strips < SIDE_EXIT_MIN_STRIPS {
+                return false;
+            }
+            // Along the strip: the ground a step to the top rises from.
+            let x = s.x_centre(ix);
+            (0..ix)
+                .rev()
+                .take_while(|&k| x - s.x_centre(k) <= STEP_REACH_VOXELS * s.voxel_m + r)
+                .filter_map(|k| ground(k, iy).map(|z| (x - s.x_centre(k), z)))
+                .any(|(run, z)| top - z + climb_on > r && top - z >= tan_max * run)
         };
         let Some(ix) = (0..s.nx).find(|&ix| {
             (first..=last)
