@@ -456,11 +456,7 @@ fn a_tall_rock_whose_foot_hides_behind_a_lower_one_is_no_low_step() {
     c.camera.min_range_m = 0.4586;
     let field = |tall: f64| {
         vec![
-            Element::Rough {
-                amplitude_m: 0.025,
-                correlation_m: 0.181_664_257,
-                seed: 9_366_177_978_744_093_217,
-            },
+            rough(0.181_664_257, 9_366_177_978_744_093_217),
             rock(2.6276, -0.5126, 0.1097, 0.0572),
             rock(1.1724, 0.4082, 0.0796, 0.0451),
             rock(1.5894, 0.3346, 0.0716, 0.0568),
@@ -488,11 +484,7 @@ fn a_tall_rock_past_a_lower_one_whose_shadow_hides_the_dip_between_stops() {
     );
     let field = |tall: f64| {
         vec![
-            Element::Rough {
-                amplitude_m: 0.025,
-                correlation_m: 0.170_835_6,
-                seed: 349_021_839_419_151_402,
-            },
+            rough(0.170_835_6, 349_021_839_419_151_402),
             rock(1.5012, 0.2717, 0.1400, 0.0728),
             rock(2.5434, -0.3579, 0.0731, 0.0432),
             rock(1.0415, 0.3705, 0.0932, 0.0472),
@@ -588,6 +580,26 @@ fn kinect_v2(mut c: Config) -> Config {
     c
 }
 
+/// Rough ground ±2.5 cm, as the sweeps draw it, correlated over `correlation_m`
+/// metres, drawn from `seed`.
+fn rough(correlation_m: f64, seed: u64) -> Element {
+    Element::Rough {
+        amplitude_m: 0.025,
+        correlation_m,
+        seed,
+    }
+}
+
+/// The sweeps' rough ground: lumpy ground ±2.5 cm with bumps `spacing_m` metres apart,
+/// drawn from `seed`.
+fn lumpy(spacing_m: f64, seed: u64) -> Element {
+    Element::Lumpy {
+        amplitude_m: 0.025,
+        spacing_m,
+        seed,
+    }
+}
+
 /// The default config with the camera at `[x, y, z]` (metres) turned by `[roll,
 /// pitch, yaw]` (degrees).
 fn mounted([x, y, z]: [f64; 3], [roll, pitch, yaw]: [f64; 3]) -> Config {
@@ -654,11 +666,7 @@ fn bumps_hiding_a_rough_descent_s_far_end_make_no_drop_off_but_an_edge_there_doe
     );
     (c.camera.hfov_deg, c.camera.vfov_deg) = (89.623_535, 58.700_771);
     let descent = vec![
-        Element::Rough {
-            amplitude_m: 0.025,
-            correlation_m: 0.121_813_108,
-            seed: 4_844_035_762_516_852_684,
-        },
+        rough(0.121_813_108, 4_844_035_762_516_852_684),
         Element::ramp(1.053_584, 0.0, -13.797_633, 0.0, Extent::Full),
     ];
     let views = analyse_views(descent.clone(), &c, [None, Some(9_001_002)]);
@@ -702,11 +710,7 @@ fn a_crest_hiding_a_rough_descent_s_far_end_where_the_strips_beside_see_it_go_on
     );
     c.camera.min_range_m = 0.386_962;
     let descent = vec![
-        Element::Rough {
-            amplitude_m: 0.025,
-            correlation_m: 0.156_825_699,
-            seed: 13_450_368_121_536_090_100,
-        },
+        rough(0.156_825_699, 13_450_368_121_536_090_100),
         Element::ramp(0.894_001, 0.0, -12.711_332, 0.0, Extent::Full).toe_rounded(Some(0.338_230)),
     ];
     for v in analyse_views(descent.clone(), &c, [None, Some(4_915_093)]) {
@@ -749,11 +753,7 @@ fn a_drop_past_a_rough_descent_stops_or_lies_past_what_the_verdict_says_is_seen(
         let gradient = -rng.gen_range(10.0..15.0);
         let edge = rng.gen_range(2.85..2.95);
         let scene = vec![
-            Element::Rough {
-                amplitude_m: 0.025,
-                correlation_m: rng.gen_range(0.1..0.2),
-                seed: rng.gen(),
-            },
+            rough(rng.gen_range(0.1..0.2), rng.gen()),
             Element::ramp(toe, 0.0, gradient, 0.0, Extent::Full),
             Element::DropOff {
                 x_m: edge,
@@ -831,11 +831,6 @@ fn a_boulder_whose_far_side_is_hidden_stops_and_a_ramp_out_of_view_still_goes() 
         height_m,
     };
     // Each on the rough ground it was drawn on (±2.5 cm).
-    let rough = |correlation_m, seed| Element::Rough {
-        amplitude_m: 0.025,
-        correlation_m,
-        seed,
-    };
     for (c, rock, ground) in [
         (
             &low,
@@ -1023,11 +1018,7 @@ fn a_boulder_whose_front_the_image_s_side_edge_cuts_is_never_go() {
     );
     let field = |height_m: f64| {
         vec![
-            Element::Rough {
-                amplitude_m: 0.025,
-                correlation_m: 0.100_250_842,
-                seed: 12_964_015_005_304_982_826,
-            },
+            rough(0.100_250_842, 12_964_015_005_304_982_826),
             rock(2.2890, 0.5098, 0.0922, 0.0467),
             rock(1.8791, 0.3311, 0.0810, 0.0661),
             rock(1.1799, 0.4466, 0.1141, 0.0599),
@@ -1109,11 +1100,7 @@ fn a_mound_on_a_bump_stops_once_its_apex_stands_over_a_wheel_radius_above_the_gr
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.172_390_610,
-                seed: 8_125_628_376_058_999_391,
-            },
+            lumpy(0.172_390_610, 8_125_628_376_058_999_391),
             Element::stone(1.7217, 0.2748, 0.1042, 0.0567, StoneShape::Mound),
             Element::stone(1.3527, 0.5459, 0.0808, 0.0505, StoneShape::Cone),
             Element::stone(2.3994, -0.4855, 0.0975, 0.0597, StoneShape::Cone),
@@ -1141,11 +1128,7 @@ fn stones_fitted_as_one_plane_that_their_strips_fall_back_from_are_measured_as_a
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.117_775_248,
-                seed: 110_646_141_553_448_086,
-            },
+            lumpy(0.117_775_248, 110_646_141_553_448_086),
             Element::stone(1.3740, -0.3215, 0.1066, 0.0546, StoneShape::Cap),
             Element::stone(2.1007, 0.5456, 0.1104, 0.0707, StoneShape::Mound),
             Element::stone(2.3595, -0.6235, 0.1525, 0.0823, StoneShape::Boulder),
@@ -1175,11 +1158,7 @@ fn a_tall_stone_among_stones_is_a_step_though_a_stone_the_view_s_end_cuts_never_
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.164_961_913,
-                seed: 16_261_499_444_224_414_293,
-            },
+            lumpy(0.164_961_913, 16_261_499_444_224_414_293),
             Element::stone(1.6772, 0.4956, 0.1413, 0.0731, StoneShape::Mound),
             Element::stone(1.4749, -0.2763, 0.1266, 0.0797, StoneShape::Boulder),
             Element::stone(2.7370, 0.2825, 0.1222, 0.0745, StoneShape::Mound),
@@ -1216,11 +1195,7 @@ fn a_low_step_whose_strips_still_rise_where_the_view_ends_is_unknown() {
     c.camera.min_range_m = 0.3698;
     let field = |tall: bool| {
         let mut field = vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.180_479_126,
-                seed: 6_527_432_295_213_641_696,
-            },
+            lumpy(0.180_479_126, 6_527_432_295_213_641_696),
             Element::stone(1.0543, 0.2988, 0.1346, 0.0691, StoneShape::Mound),
             Element::stone(1.8395, 0.5842, 0.0696, 0.0421, StoneShape::Mound),
             Element::stone(2.1571, -0.4698, 0.0907, 0.0538, StoneShape::Cone),
@@ -1268,11 +1243,7 @@ fn a_cone_whose_far_side_lies_in_its_shadow_is_measured_to_its_highest_point_see
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.106_908_610,
-                seed: 8_842_443_668_072_209_081,
-            },
+            lumpy(0.106_908_610, 8_842_443_668_072_209_081),
             Element::stone(2.3356, -0.5022, 0.0904, 0.0583, StoneShape::Cone),
             Element::stone(1.9072, -0.2953, 0.0600, 0.0444, StoneShape::Cone),
             Element::stone(2.1203, 0.4856, 0.1651, height_m, StoneShape::Cone),
@@ -1293,11 +1264,7 @@ fn a_stone_whose_foot_lies_in_a_dip_of_lumpy_ground_is_climbed() {
     c.camera.min_range_m = 0.3332;
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.110_430_467,
-                seed: 11_292_676_210_325_382_132,
-            },
+            lumpy(0.110_430_467, 11_292_676_210_325_382_132),
             Element::stone(1.0420, -0.4041, 0.1330, 0.0865, StoneShape::Cap),
             Element::stone(1.2378, 0.4096, 0.1597, height_m, StoneShape::Boulder),
             Element::stone(2.5749, 0.3052, 0.1264, 0.0709, StoneShape::Boulder),
@@ -1322,11 +1289,7 @@ fn a_stone_whose_foot_lies_past_a_one_cell_shadow_of_lumpy_ground_is_climbed() {
     c.camera.min_range_m = 0.4349;
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.103_700_052,
-                seed: 34_370_908_286_108_581,
-            },
+            lumpy(0.103_700_052, 34_370_908_286_108_581),
             Element::stone(2.3454, 0.4058, 0.1150, height_m, StoneShape::Boulder),
             Element::stone(1.5094, 0.4525, 0.0721, 0.0597, StoneShape::Mound),
             Element::stone(1.5938, -0.5640, 0.0629, 0.0435, StoneShape::Cone),
@@ -1355,11 +1318,7 @@ fn a_rock_whose_level_ground_before_it_ends_at_a_short_hole_is_climbed() {
     );
     let field = |height_m: f64| {
         vec![
-            Element::Rough {
-                amplitude_m: 0.025,
-                correlation_m: 0.111_893_917,
-                seed: 7_020_678_729_137_960_925,
-            },
+            rough(0.111_893_917, 7_020_678_729_137_960_925),
             rock(1.6791, -0.3333, 0.1712, 0.0876),
             rock(2.4577, 0.5360, 0.0687, 0.0427),
             rock(0.8088, 0.3683, 0.0808, 0.0612),
@@ -1399,11 +1358,7 @@ fn a_stone_with_a_broad_dip_of_lumpy_ground_past_it_is_climbed_down() {
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.127_293_035,
-                seed: 12_951_764_189_611_123_638,
-            },
+            lumpy(0.127_293_035, 12_951_764_189_611_123_638),
             Element::stone(2.7682, -0.4385, 0.1260, 0.0651, StoneShape::Cap),
             Element::stone(2.2553, -0.6016, 0.1025, 0.0747, StoneShape::Mound),
             Element::stone(1.2041, -0.5053, 0.1171, height_m, StoneShape::Cap),
@@ -1434,11 +1389,7 @@ fn a_stone_whose_shadow_runs_to_the_corridor_s_end_is_no_steep_face() {
     c.camera.min_range_m = 0.3999;
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.165_305_882,
-                seed: 186_878_076_530_193_326,
-            },
+            lumpy(0.165_305_882, 186_878_076_530_193_326),
             Element::stone(1.0370, -0.5055, 0.0738, 0.0445, StoneShape::Mound),
             Element::stone(2.0097, 0.6005, 0.0825, 0.0522, StoneShape::Cone),
             Element::stone(1.4747, 0.4044, 0.0925, 0.0736, StoneShape::Cone),
@@ -1462,11 +1413,7 @@ fn a_sharp_cone_in_a_dip_whose_far_side_is_hidden_stops() {
     c.camera.min_range_m = 0.4257;
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.155_371_564,
-                seed: 7_784_971_108_706_534_428,
-            },
+            lumpy(0.155_371_564, 7_784_971_108_706_534_428),
             Element::stone(2.0228, 0.5336, 0.1189, 0.0826, StoneShape::Cone),
             Element::stone(1.0141, -0.4103, 0.0652, 0.0489, StoneShape::Boulder),
             Element::stone(1.9525, -0.4252, 0.1155, 0.0752, StoneShape::Cap),
@@ -1495,11 +1442,7 @@ fn a_sharp_cone_whose_cells_read_its_apex_low_stops() {
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.197_191_933,
-                seed: 15_116_880_644_064_618_536,
-            },
+            lumpy(0.197_191_933, 15_116_880_644_064_618_536),
             Element::stone(2.1477, 0.5786, 0.1136, 0.0798, StoneShape::Boulder),
             Element::stone(1.8305, 0.4421, 0.0859, 0.0690, StoneShape::Cone),
             Element::stone(2.4540, 0.4064, 0.1013, 0.0531, StoneShape::Mound),
@@ -1527,11 +1470,7 @@ fn a_sharp_cone_whose_flank_rises_longer_than_a_step_to_its_apex_stops() {
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.133_633_818,
-                seed: 1_469_758_263_644_250_657,
-            },
+            lumpy(0.133_633_818, 1_469_758_263_644_250_657),
             Element::stone(2.0847, 0.6214, 0.1028, 0.0807, StoneShape::Cap),
             Element::stone(2.3938, -0.5751, 0.1461, 0.0882, StoneShape::Boulder),
             Element::stone(1.3568, -0.5521, 0.1119, 0.0561, StoneShape::Cap),
@@ -1569,11 +1508,7 @@ fn a_cone_whose_foot_lies_below_the_image_and_whose_far_side_falls_back_is_no_ra
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.189_456_001,
-                seed: 17_823_590_858_156_014_571,
-            },
+            lumpy(0.189_456_001, 17_823_590_858_156_014_571),
             Element::stone(2.1994, 0.4803, 0.0699, 0.0463, StoneShape::Cap),
             Element::stone(1.6409, 0.2746, 0.0704, 0.0431, StoneShape::Mound),
             Element::stone(1.7607, 0.6110, 0.1157, 0.0810, StoneShape::Cap),
@@ -1604,11 +1539,7 @@ fn a_sharp_cone_whose_far_side_lies_in_its_own_shadow_stops() {
     c.camera.min_range_m = 0.324_929;
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.100_160_347,
-                seed: 6_278_911_417_340_931_312,
-            },
+            lumpy(0.100_160_347, 6_278_911_417_340_931_312),
             Element::stone(
                 1.780_788,
                 -0.489_970,
@@ -1661,11 +1592,7 @@ fn a_sharp_cone_whose_foot_lies_below_the_image_is_never_go() {
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.184_082_523,
-                seed: 7_575_328_391_925_232_305,
-            },
+            lumpy(0.184_082_523, 7_575_328_391_925_232_305),
             Element::stone(
                 1.992_703,
                 0.525_911,
@@ -1716,11 +1643,7 @@ fn a_step_the_face_analysis_finds_stops_the_rover_beside_unknown_ground() {
     (c.camera.hfov_deg, c.camera.vfov_deg) = (88.726_162, 57.937_043);
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.152_384_611,
-                seed: 10_768_402_117_572_600_557,
-            },
+            lumpy(0.152_384_611, 10_768_402_117_572_600_557),
             Element::stone(
                 1.904_599,
                 -0.277_362,
@@ -1776,11 +1699,7 @@ fn a_stone_s_flank_sloping_across_a_strip_is_not_carried_past_the_stone() {
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.123_327_307,
-                seed: 17_668_372_192_814_885_003,
-            },
+            lumpy(0.123_327_307, 17_668_372_192_814_885_003),
             Element::stone(2.344_785, -0.359_535, 0.105_018, 0.072_176, StoneShape::Cap),
             Element::stone(
                 2.006_504,
@@ -1820,11 +1739,7 @@ fn a_rounded_rock_whose_highest_point_only_adds_noise_is_climbed() {
     c.camera.min_range_m = 0.3899;
     let field = |height_m: f64| {
         vec![
-            Element::Rough {
-                amplitude_m: 0.025,
-                correlation_m: 0.117_586_658,
-                seed: 6_358_269_668_251_013_284,
-            },
+            rough(0.117_586_658, 6_358_269_668_251_013_284),
             rock(0.7832, -0.3279, 0.0753, 0.0493),
             rock(2.1856, -0.3438, 0.1095, 0.0601),
             rock(1.2406, -0.3311, 0.1360, height_m),
@@ -1849,11 +1764,7 @@ fn a_tall_mound_whose_top_the_image_s_top_edge_cuts_is_never_go() {
     c.camera.min_range_m = 0.3396;
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.165_498_816,
-                seed: 8_466_671_139_755_445_421,
-            },
+            lumpy(0.165_498_816, 8_466_671_139_755_445_421),
             Element::stone(1.1068, 0.4313, 0.1126, 0.0640, StoneShape::Mound),
             Element::stone(0.9853, -0.4380, 0.1003, 0.0508, StoneShape::Cone),
             Element::stone(1.9518, -0.5040, 0.1639, height_m, StoneShape::Mound),
@@ -1883,11 +1794,7 @@ fn a_mound_the_top_edge_cuts_is_not_go_when_noise_lifts_the_cell_before_the_cut(
     c.camera.min_range_m = 0.468_472_547;
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.188_836_160_794_749_66,
-                seed: 4_892_485_967_719_931_593,
-            },
+            lumpy(0.188_836_160_794_749_66, 4_892_485_967_719_931_593),
             Element::stone(1.534_814, 0.599_559, 0.075_835, 0.046_085, StoneShape::Cap),
             Element::stone(
                 1.073_263,
@@ -2437,11 +2344,7 @@ fn the_surface_plane_of_a_smooth_ramp_is_the_drawn_ramp() {
             families::surface_toe(&Terrain::new(vec![ramp.clone()]), &c, toe, 2.8).unwrap();
         assert!((s_toe - toe).abs() < 1e-6, "{s_toe} for {toe}");
         assert!((s_deg - deg).abs() < 1e-6, "{s_deg}° for {deg}°");
-        let rough = Element::Rough {
-            amplitude_m: 0.025,
-            correlation_m: 0.15,
-            seed: 7,
-        };
+        let rough = rough(0.15, 7);
         let (r_toe, r_deg) =
             families::surface_toe(&Terrain::new(vec![rough, ramp]), &c, toe, 2.8).unwrap();
         // ±2.5 cm of height over a 1.2-1.9 m face: centimetres and a degree or so.
@@ -2496,11 +2399,7 @@ fn rough_ground_under_a_full_width_ramp_changes_no_verdict_and_keeps_the_measure
     // ±2.5 cm bumps swing a wheel-radius run on a 24° ramp past 30°, and bias a face
     // fit that keeps only cells over the rise threshold: neither may show.
     for seed in 1..=4u64 {
-        let rough = Element::Rough {
-            amplitude_m: 0.025,
-            correlation_m: 0.1 + 0.03 * seed as f64,
-            seed,
-        };
+        let rough = rough(0.1 + 0.03 * seed as f64, seed);
         let (toe, grad) = (
             0.8 + 0.2 * seed as f64,
             [24.5, 15.0, 24.0, 16.0][seed as usize - 1],
@@ -2530,11 +2429,7 @@ fn a_rough_ramp_under_the_limit_seen_coarsely_makes_no_step() {
     // heights add another 2 cm where it steepens. The wheelbase of ground from that
     // run lies on one 25° line within rough ground's spread: a rough ramp, no step.
     let c = qvga(mounted([0.096, 0.078, 0.84], [-1.155, 28.766, -0.109]), 0.4);
-    let rough = Element::Rough {
-        amplitude_m: 0.025,
-        correlation_m: 0.10376,
-        seed: 9475884552557184608,
-    };
+    let rough = rough(0.10376, 9475884552557184608);
     let ramp = Element::ramp(1.4944, 0.0, 24.963, 0.0, Extent::Full);
     let v = analyse(vec![rough, ramp], &c);
     assert_rough_go(&v, 2, 1.4944, 24.963);
@@ -2553,11 +2448,7 @@ fn rough_descents_seen_at_grazing_incidence_are_go_and_rough_drop_offs_stop() {
     .into_iter()
     .enumerate()
     {
-        let rough = Element::Rough {
-            amplitude_m: 0.025,
-            correlation_m: corr,
-            seed,
-        };
+        let rough = rough(corr, seed);
         let ramp = Element::ramp(toe, 0.0, grad, 0.0, Extent::Full);
         let v = analyse(vec![rough.clone(), ramp], &Config::default());
         assert_eq!(v.decision, Decision::Go, "seed {seed}: {:?}", v.hazards);
@@ -2601,11 +2492,7 @@ fn a_rough_descent_crossed_by_under_one_row_per_cell_is_go_and_a_drop_off_there_
     // one or two points each, on the ground, or none. That was a drop-off.
     let mut c = kinect_v2(mounted([0.231, -0.058, 0.55], [1.481, 29.967, -7.297]));
     c.camera.min_range_m = 0.4;
-    let rough = Element::Rough {
-        amplitude_m: 0.025,
-        correlation_m: 0.1732,
-        seed: 15293324616560050789,
-    };
+    let rough = rough(0.1732, 15293324616560050789);
     let (toe, g) = (1.0587, -14.602);
     let descent = Element::ramp(toe, 0.0, g, 0.0, Extent::Full);
     let v = analyse(vec![rough.clone(), descent.clone()], &c);
@@ -2876,11 +2763,7 @@ fn a_steep_ramp_seen_rising_a_few_centimetres_before_the_view_ends_is_never_go()
         }
     }
     for seed in [1, 2, 3] {
-        let rough = Element::Rough {
-            amplitude_m: 0.025,
-            correlation_m: 0.15,
-            seed,
-        };
+        let rough = rough(0.15, seed);
         let v = analyse_noisy(vec![rough], &c, seed);
         assert_eq!(v.decision, Decision::Go, "rough {seed}: {:?}", v.hazards);
     }
@@ -2958,11 +2841,7 @@ impl ViewEndControls {
             }
         }
         for rough_seed in self.rough_seeds {
-            let rough = Element::Rough {
-                amplitude_m: 0.025,
-                correlation_m: self.correlation_m,
-                seed: rough_seed,
-            };
+            let rough = rough(self.correlation_m, rough_seed);
             let v = analyse_noisy(vec![rough], c, rough_seed);
             assert_eq!(
                 v.decision,
@@ -3064,11 +2943,7 @@ fn a_boulder_whose_shadow_hides_the_ground_beside_it_is_never_go() {
     );
     let field = |third: Element| {
         vec![
-            Element::Rough {
-                amplitude_m: 0.025,
-                correlation_m: 0.172,
-                seed: 14696788476478873989,
-            },
+            rough(0.172, 14696788476478873989),
             rock(1.537, 0.484, 0.148, 0.087),
             rock(2.427, -0.377, 0.056, 0.041),
             rock(2.052, 0.480, 0.076, 0.046),
@@ -3304,11 +3179,7 @@ fn a_rough_ramp_rising_out_of_view_is_judged_by_its_line_and_a_steep_one_still_s
     c.camera.width = 320;
     c.camera.height = 240;
     c.camera.min_range_m = 0.3307;
-    let lumpy = Element::Lumpy {
-        amplitude_m: 0.025,
-        spacing_m: 0.11706,
-        seed: 4060366437643161416,
-    };
+    let lumpy = lumpy(0.11706, 4060366437643161416);
     let ramp = |gradient_deg: f64, cap_m: Option<f64>| {
         vec![
             lumpy.clone(),
@@ -3727,11 +3598,7 @@ fn a_rock_field_s_step_is_measured_from_the_ground_before_it_not_the_rover_s() {
         [-5.146_626_2, 21.543_963_3, 1.404_315_8],
     );
     c.camera.min_range_m = 0.476_532;
-    let rough = Element::Rough {
-        amplitude_m: 0.025,
-        correlation_m: 0.128_653,
-        seed: 1_964_257_335_640_242_765,
-    };
+    let rough = rough(0.128_653, 1_964_257_335_640_242_765);
     let field = |tallest: f64| {
         vec![
             rough.clone(),
@@ -4330,11 +4197,7 @@ fn a_cone_whose_flank_climbs_into_the_image_s_side_edge_is_unknown() {
     c.camera.min_range_m = 0.3274;
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.133_335_608,
-                seed: 6_067_819_546_458_486_397,
-            },
+            lumpy(0.133_335_608, 6_067_819_546_458_486_397),
             Element::stone(2.3197, -0.5389, 0.0903, 0.0728, StoneShape::Cap),
             Element::stone(1.6228, 0.3357, 0.0767, 0.0435, StoneShape::Mound),
             Element::stone(1.4795, -0.4598, 0.0628, 0.0461, StoneShape::Cap),
@@ -4360,11 +4223,7 @@ fn a_cone_beside_the_image_whose_flank_climbs_on_into_its_edge_is_unknown() {
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.137_407_579,
-                seed: 8_525_058_789_164_001_605,
-            },
+            lumpy(0.137_407_579, 8_525_058_789_164_001_605),
             Element::stone(2.6512, 0.3779, 0.0947, 0.0706, StoneShape::Cone),
             Element::stone(2.4187, -0.5454, 0.1536, 0.0892, StoneShape::Cone),
             Element::stone(2.5295, 0.6277, 0.0978, 0.0602, StoneShape::Cone),
@@ -4385,11 +4244,7 @@ fn a_cone_beside_the_image_whose_flank_climbs_on_into_its_edge_is_unknown() {
     c.camera.min_range_m = 0.4134;
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.148_834_710,
-                seed: 12_493_629_855_614_799_832,
-            },
+            lumpy(0.148_834_710, 12_493_629_855_614_799_832),
             Element::stone(2.7862, -0.6236, 0.0797, 0.0563, StoneShape::Boulder),
             Element::stone(0.9733, -0.3475, 0.1078, 0.0709, StoneShape::Boulder),
             Element::stone(2.1719, 0.3185, 0.0929, 0.0522, StoneShape::Cap),
@@ -4702,11 +4557,7 @@ fn a_cone_whose_apex_cell_is_followed_by_a_glimpse_of_its_far_side_stops() {
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.136_371_241,
-                seed: 1_495_898_180_130_738_981,
-            },
+            lumpy(0.136_371_241, 1_495_898_180_130_738_981),
             Element::stone(1.3231, 0.6077, 0.0720, 0.0579, StoneShape::Cone),
             Element::stone(0.7082, -0.3108, 0.1287, 0.0748, StoneShape::Boulder),
             Element::stone(1.8460, 0.3127, 0.1480, 0.0812, StoneShape::Cone),
@@ -4738,11 +4589,7 @@ fn a_low_cone_glimpsed_past_its_apex_far_out_is_climbed() {
     c.camera.min_range_m = 0.3245;
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.169_493_913,
-                seed: 3_607_088_027_729_138_554,
-            },
+            lumpy(0.169_493_913, 3_607_088_027_729_138_554),
             Element::stone(1.3927, 0.4464, 0.1110, 0.0695, StoneShape::Boulder),
             Element::stone(2.0165, 0.3544, 0.1606, 0.0808, StoneShape::Mound),
             Element::stone(0.7416, -0.3280, 0.0680, 0.0546, StoneShape::Boulder),
@@ -4769,11 +4616,7 @@ fn a_cone_whose_apex_cell_has_its_shadow_beside_it_stops() {
     );
     let field = |height_m: f64| {
         vec![
-            Element::Lumpy {
-                amplitude_m: 0.025,
-                spacing_m: 0.121_854_769,
-                seed: 504_179_975_047_345_081,
-            },
+            lumpy(0.121_854_769, 504_179_975_047_345_081),
             Element::stone(2.0395, 0.5306, 0.1434, 0.0773, StoneShape::Cap),
             Element::stone(1.3343, 0.5971, 0.0990, 0.0602, StoneShape::Boulder),
             Element::stone(0.9914, 0.2948, 0.0721, 0.0409, StoneShape::Boulder),
@@ -4931,11 +4774,7 @@ fn ground_leaving_the_camera_s_range_ends_the_view_there() {
     );
     c.camera.max_range_m = 3.0;
     let rough_descent = vec![
-        Element::Rough {
-            amplitude_m: 0.025,
-            correlation_m: 0.172_436_640_520_817,
-            seed: 14_109_988_375_644_157_492,
-        },
+        rough(0.172_436_640_520_817, 14_109_988_375_644_157_492),
         Element::ramp(1.2668, 0.0, -14.379, 0.0, Extent::Full),
     ];
     let [clean, noisy] = analyse_views(rough_descent, &c, [None, Some(3_301_082)]);
