@@ -40,9 +40,9 @@ const SIDE_EXIT_MAX_STRIPS: usize = 4;
 /// top across the track but 10.6 cm over the ground 0.15 m before it along the strip,
 /// went (`natural 200 10708 random 7` #164). Cones beside the image in those two scenes
 /// now stop from 15 cm up (from 20 and 22 cm before). What is seen cannot tell such a
-/// cone from a pebble whose top the edge cuts: of 28,800 sweep frames, this turned 8
-/// that went where a stop was due `unknown`, 24 whose stone's top lies beside the
-/// image, and 5 that were due go (boulders of 8.3-8.6 cm whose top the image just
+/// cone from a pebble whose top the edge cuts: of 30,400 sweep frames, this turned 8
+/// that went where a stop was due `unknown`, 34 whose stone's top lies beside the
+/// image, and 6 that were due go (stones of 8.3-8.7 cm whose top the image just
 /// holds, their flank cut near it).
 ///
 /// A ramp, straight or diagonal, rises along the track: across it the ground climbs
