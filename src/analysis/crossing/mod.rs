@@ -291,7 +291,7 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
         let floor = strip[..k]
             .iter()
             .rev()
-            .take_while(|c| here.x - c.x <= STEP_REACH_VOXELS * s.voxel_m + r)
+            .take_while(|c| here.x - c.x <= step_floor_reach_m(s.voxel_m, r))
             .fold(f32::INFINITY, |m, c| m.min(c.z));
         // A top: nothing within a wheel radius past it stands higher (a ramp rising
         // under the limit makes a cell a local maximum every few cells with noise).
@@ -308,6 +308,14 @@ fn sharp_tops(f: &Frame, iy: usize, strip: &mut [StripCell]) -> bool {
         }
     }
     any
+}
+
+/// How far back along a strip, metres, the ground lies that a step to a top can rise
+/// from: the rises-only pass's reach ([`STEP_REACH_VOXELS`] voxels of `voxel_m`) and
+/// a wheel radius `r`. The sharp-top test ([`sharp_tops`]) and the side edge's test
+/// ([`side_exit`]) ask it.
+fn step_floor_reach_m(voxel_m: f32, r: f32) -> f32 {
+    STEP_REACH_VOXELS * voxel_m + r
 }
 
 /// A cell's top voxel's highest point ([`Cell::peak`]), metres, where the cell reads

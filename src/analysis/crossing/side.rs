@@ -1,7 +1,7 @@
 //! Rises the image's side edge cuts: a stone in a track whose flank the camera sees
 //! climbing toward the left or right edge of its image, its top beside the view.
 
-use super::{followed, unknown_judged, Frame, Region, STEP_REACH_VOXELS};
+use super::{followed, step_floor_reach_m, unknown_judged, Frame, Region};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
 /// Fewest strips across that a rise into the image's side edge must climb over, each
@@ -111,7 +111,7 @@ pub fn side_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             let x = s.x_centre(ix);
             (0..ix)
                 .rev()
-                .take_while(|&k| x - s.x_centre(k) <= STEP_REACH_VOXELS * s.voxel_m + r)
+                .take_while(|&k| x - s.x_centre(k) <= step_floor_reach_m(s.voxel_m, r))
                 .filter_map(|k| ground(k, iy).map(|z| (x - s.x_centre(k), z)))
                 .any(|(run, z)| top - z + climb_on > r && top - z >= tan_max * run)
         };
