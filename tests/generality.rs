@@ -3397,6 +3397,30 @@ fn a_rock_whose_front_the_view_ends_on_is_never_go() {
     assert_never_go(&[ramp.clone(), mound], &c, [3_110_065, 65], Side::Right);
     assert_eq!(analyse(vec![ramp], &c).decision, Decision::Go);
 
+    // `sweep -- natural 100 10902 random 10` #87: a 320×240 camera 0.55 m high,
+    // pitched 37.6°, rolled −5° and yawed −5.6°, sees a smooth 11.1° ramp from 1.15 m
+    // and, 0.33 m up it, a 19.4 cm mound in the left track. The image's top edge cuts
+    // its front 4-6 cm over the ramp. Three strips see it climb from the ramp at 35-40°
+    // to their cut cells' top voxels, but only 29° to those cells' far edges, which
+    // was all the test of fronts on smooth ground asked: a go, clean and noisy.
+    let c = qvga(
+        mounted(
+            [0.235_703_694, 0.087_091_212, 0.551_305_430],
+            [-4.961_719_771, 37.648_431_338, -5.572_233_374],
+        ),
+        0.446_174_079,
+    );
+    let ramp = Element::ramp(1.154_267_559, 0.0, 11.148_924_920, 0.0, Extent::Full);
+    let mound = Element::stone(
+        1.650_810_530,
+        0.365_534_149,
+        0.166_882_082,
+        0.194_338_254,
+        StoneShape::Mound,
+    );
+    assert_never_go(&[ramp.clone(), mound], &c, [10_902_087, 87], Side::Left);
+    assert_eq!(analyse(vec![ramp], &c).decision, Decision::Go);
+
     // Random rigs: a smooth climbable ramp (or flat ground) whose view ends in the
     // corridor, and a 15-20 cm rock or stone of any shape in a track whose rim lies
     // up to 0.2 m before where the view of the ground alone ends there. The ground
