@@ -11,6 +11,7 @@
 pub mod analysis;
 pub mod bench;
 pub mod config;
+pub mod coverage;
 mod error;
 pub mod foxglove;
 pub mod grid;

@@ -507,6 +507,59 @@ fn check_config_prints_the_effective_values_or_names_the_bad_key() {
 }
 
 #[test]
+fn a_mount_that_never_sees_part_of_a_track_whole_is_named_by_check_config_and_run() {
+    // `sweep -- posts 100 10530 random` #96's rig: a Kinect v1 0.52 m high, yawed
+    // −8.3°: the left track's outer strips are never seen whole (`coverage`).
+    let dir = tempfile::tempdir().unwrap();
+    let yawed = write_config(
+        dir.path(),
+        "[mount]\nx_m = 0.0386\ny_m = -0.0525\nz_m = 0.5221\nroll_deg = -5.988\n\
+         pitch_deg = 34.251\nyaw_deg = -8.256\n",
+    );
+    let out = bin().args(["check-config", &yawed]).output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(rover_terrain::Config::from_toml(&text, "printed").is_ok());
+    assert!(
+        text.contains("# warning: the strip at y = +0.675 m is never seen whole"),
+        "{text}"
+    );
+    assert!(text.contains("#   left track: in 7 of 10 strips"), "{text}");
+
+    let upright = dir.path().join("upright.toml");
+    std::fs::write(&upright, "[mount]\npitch_deg = 30.0\n").unwrap();
+    let out = bin()
+        .args(["check-config", upright.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("#   left track: in 10 of 10 strips"),
+        "{text}"
+    );
+    assert!(!text.contains("warning"), "{text}");
+
+    let out = bin()
+        .args([
+            "run",
+            "--config",
+            &yawed,
+            "--camera",
+            "fake:fixtures/scenes",
+        ])
+        .env("RUST_LOG", "info")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("never sees an obstacle 0.11 m high whole")
+            && stderr.contains("+0.575, +0.625, +0.675"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn the_service_levels_itself_from_recorded_tilt_states() {
     let dir = tempfile::tempdir().unwrap();
     let config = write_config(dir.path(), "[mount]\npitch_deg = 36.0\nauto_level = true\n");

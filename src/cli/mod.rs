@@ -20,6 +20,7 @@ use std::process::ExitCode;
 
 use anyhow::Context;
 use clap::{Parser, Subcommand};
+use rover_terrain::coverage::Coverage;
 use rover_terrain::{Config, Error};
 
 /// Terrain analysis from a depth camera for a six-wheeled rocker rover.
@@ -129,9 +130,10 @@ fn dispatch(
         Command::CheckConfig { file } => {
             let config = Config::load(&file)?;
             print_stdout(&format!(
-                "# {}: valid; the effective configuration\n{}",
+                "# {}: valid; the effective configuration\n{}\n{}",
                 file.display(),
-                toml::to_string(&config).context("printing the config")?
+                toml::to_string(&config).context("printing the config")?,
+                Coverage::for_rover(&config).report()
             ))?;
             Ok(ExitCode::SUCCESS)
         }

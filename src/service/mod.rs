@@ -39,6 +39,7 @@ use rover_terrain_drivers::{CameraSpec, Faults};
 pub use histogram::{Histogram, Percentiles};
 pub use notify::Notifier;
 
+use crate::coverage::Coverage;
 use crate::link::LinkTarget;
 use crate::{Config, Error, Pipeline};
 
@@ -165,6 +166,26 @@ fn get(c: &AtomicU64) -> u64 {
     c.load(Ordering::Relaxed)
 }
 
+/// Logs a warning naming the corridor's strips this mount never sees an obstacle a
+/// wheel radius high whole in ([`Coverage`]): the rover drives over ground there whose
+/// obstacles no frame can measure. With `mount.auto_level`, for the configured pose.
+fn warn_uncovered(config: &Config) {
+    let coverage = Coverage::for_rover(config);
+    let never: Vec<String> = coverage
+        .never_whole()
+        .map(|s| format!("{:+.3}", s.y_m))
+        .collect();
+    if !never.is_empty() {
+        log::warn!(
+            "this mount never sees an obstacle {:.2} m high whole in the corridor's strips \
+             at y = {} m: how high anything there stands is never measured \
+             (`rover-terrain check-config` shows the coverage)",
+            coverage.height_m,
+            never.join(", ")
+        );
+    }
+}
+
 /// Run the service until `shutdown` receives (or is dropped), the recording ends, or
 /// `options.frames` frames are analysed. Errors only if it cannot start (the camera
 /// cannot be opened, the configuration cannot work); once running, failures are
@@ -179,6 +200,7 @@ pub fn run(options: Options, notifier: Notifier, shutdown: Receiver<()>) -> Resu
     }
     let config = &sized;
     let pipeline = Pipeline::new(config.clone())?;
+    warn_uncovered(config);
     let counters = Arc::new(Counters::default());
     let camera = camera::start(&options.camera, &options.faults, config, &counters)?;
     log::info!(
