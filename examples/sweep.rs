@@ -48,7 +48,10 @@
 //! that pass as well as those that fail. A go where a stop was due also prints, for
 //! each stone or rock drawn 12 cm or higher, how high its apex stands over the ground
 //! before it (`RELIEF #N ...`, sampled from the height field); a stop where a go was
-//! due prints it for every stone and rock.
+//! due prints it for every stone and rock. A go where a stop was due on a mount that
+//! never sees an obstacle a wheel radius high whole in some strip of the corridor
+//! (`rover_terrain::coverage`) prints `COVER #N ...` naming those strips, and a line
+//! counts such frames: no frame of that mount can measure what stands there.
 //!
 //! Where a stone, rock, block or step up in the corridor has its top out of view
 //! (`sim::sight::unseen_tops`: outside the image or its top rows, or out of range),
@@ -95,6 +98,7 @@ mod second;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rover_terrain::analysis::GRAZING_DEG;
+use rover_terrain::coverage::Coverage;
 use rover_terrain::sim::{
     self, families, random, Element, Expectation, KinectNoise, Terrain, Tolerance,
 };
@@ -305,6 +309,7 @@ fn main() {
     let mode = mode.as_str();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let (mut failures, mut total, mut false_go, mut excused) = (0, 0, 0, (0, 0));
+    let mut uncovered_false_go = 0;
     let (mut top_excused, mut belly_excused) = (0, 0);
     let mut not_drawn = 0;
     let mut approaches = Approaches::default();
@@ -331,6 +336,10 @@ fn main() {
         // is not seen, so any verdict but go is right (a go is judged as usual).
         let unseen_tops = sim::sight::unseen_tops(&terrain, &config);
         let strike = Strike::of(&terrain, &config, &want);
+        let never_whole: Vec<String> = Coverage::for_rover(&config)
+            .never_whole()
+            .map(|s| format!("{:+.3}", s.y_m))
+            .collect();
         for noisy in [false, true] {
             let mut f = frame.clone();
             let noise_seed = seed * 1000 + i as u64;
@@ -363,6 +372,13 @@ fn main() {
             if v.decision == Decision::Go && (want.verdict != Decision::Go || over_strike.is_some())
             {
                 false_go += 1;
+                if !never_whole.is_empty() {
+                    uncovered_false_go += 1;
+                    println!(
+                        "COVER {label}: the mount never sees an obstacle a wheel radius high whole at y = {} m",
+                        never_whole.join(", ")
+                    );
+                }
                 if let Some(drive) = approach {
                     let noise = noisy.then_some((noise, noise_seed));
                     approaches.drive_up(drive, hold, (&terrain, &config, noise), &label);
@@ -395,6 +411,9 @@ fn main() {
     }
     println!(
         "{top_excused} frames not go for a stone, rock, block or step whose top is out of view (passed)"
+    );
+    println!(
+        "{uncovered_false_go} false go frames on a mount that never sees part of the corridor whole (COVER)"
     );
     println!(
         "{belly_excused} frames not go where the belly strikes ground drawn as climbable (passed)"
