@@ -3334,6 +3334,30 @@ fn mixed_pixels_beside_ground_falling_away_make_no_stop_and_a_drop_there_still_s
 }
 
 #[test]
+fn a_low_step_whose_top_the_view_ends_on_seen_level_past_its_face_is_go() {
+    // `sweep -- hazards 100 10704 random` #82: a Kinect v1 0.81 m high, rolled −8.5°
+    // and pitched 40°, sees a 4.5 cm step across the corridor 2.13 m out. In the left
+    // track the view ends on it: its first cut cell holds the face and the step's top,
+    // the next ones the top, level. Measured to that cell's top voxel, the climb from
+    // the ground is steeper than the limit, but the cells past it show the top level:
+    // the step is seen whole, the step test's (under a wheel radius: go). The same
+    // step 25 cm high is a stop.
+    let c = mounted(
+        [0.071_539_553, 0.077_126_942, 0.805_100_301],
+        [-8.538_559_540, 40.051_352_478, 1.293_722_873],
+    );
+    let step = |height_m| {
+        vec![Element::Step {
+            x_m: 2.127_062_565,
+            height_m,
+            extent: Extent::Full,
+        }]
+    };
+    assert_eq!(analyse(step(0.044_594_876), &c).decision, Decision::Go);
+    assert_eq!(analyse(step(0.25), &c).decision, Decision::Stop);
+}
+
+#[test]
 fn a_rock_whose_front_the_view_ends_on_is_never_go() {
     // `sweep -- families 300 2 random` #274: a D435-like camera 0.65 m high, pitched
     // 43° and rolled 5°, sees a smooth 15° ramp end its view at 2.0 m under the right

@@ -590,12 +590,17 @@ fn fronts<'c>(
 /// that steepen a short stretch), a cut cell counts
 /// when its top stands [`BEND_RISE_M`] or more above that line carried to the cell's
 /// far edge (off the ground the strip was on), above the line where the front begins
-/// by more than the slope limit `tan_max` climbs from there to the top (its voxel's
-/// centroid, at most the cell's far edge: a front no steeper than the limit keeps
-/// every point, so their mean, under that line; the far edge alone let a 19.4 cm
-/// mound 0.5 m up an 11° ramp, seen rising 5.6 cm over 6.5 cm into the cut, pass as
-/// climbing 29°: `sweep -- natural 100 10902 random 10` #87), and
-/// [`FRONT_RISING_M`] or more above the upper
+/// by more than the slope limit `tan_max` climbs from there to the cell's far edge
+/// (the gentlest the rise can be), or to its top voxel's centroid where the cut cells
+/// seen past it stand [`FRONT_RISING_M`] or more higher still (a front no steeper than
+/// the limit keeps every point, so their mean, under that line; a cut cell past it
+/// not that high shows the top level, a low step's seen whole past its face: without
+/// it a 4.5 cm step the view ends on was `unknown`, `sweep -- hazards 100 10704
+/// random` #82; its noisy frame, the top seen in the last cut cell only, still is).
+/// The
+/// far edge alone let a 19.4 cm mound 0.5 m up an 11° ramp, seen rising 5.6 cm over
+/// 6.5 cm into the cut, pass as climbing 29° (`sweep -- natural 100 10902 random 10`
+/// #87). And [`FRONT_RISING_M`] or more above the upper
 /// surface (`crest`) of the front's cells before the cut (still rising where the view
 /// ends: a stone seen whole, its top before the cut, is the step test's). Not their top
 /// voxels: a few of the cut's points that depth noise moved nearer made a voxel 10.2
@@ -631,12 +636,18 @@ fn bends_up<'c>(
             .filter_map(|(ix, c)| {
                 let far = s.x_centre(ix) + 0.5 * s.voxel_m;
                 let bend = c.top - on_line(far);
-                // The top voxel's centroid: a front no steeper than the limit from
-                // `near` on keeps all its points, so their mean, under that line.
-                let run = (c.top_xy[0].min(far) - near).max(0.0);
-                (bend >= BEND_RISE_M
-                    && c.top - on_line(near) >= tan_max * run
-                    && c.top >= front_top + FRONT_RISING_M)
+                let steep_to = |x: f32| c.top - on_line(near) >= tan_max * (x - near).max(0.0);
+                // Where the cut cells seen past it rise on, its top is not seen level
+                // (a low step's top past its face): the climb is measured to its top
+                // voxel's centroid. A front no steeper than the limit from `near` on
+                // keeps all its points, so their mean, under that line.
+                let rises_on = || {
+                    cut.clone()
+                        .filter(|&(k, _)| k > ix)
+                        .all(|(_, d)| d.top >= c.top + FRONT_RISING_M)
+                };
+                let steep = steep_to(far) || (steep_to(c.top_xy[0].min(far)) && rises_on());
+                (bend >= BEND_RISE_M && steep && c.top >= front_top + FRONT_RISING_M)
                     .then_some(bend)
             })
             .reduce(f32::max)?;
