@@ -176,6 +176,15 @@ fn is_stall_unknown(v: &Verdict) -> bool {
         && v.seen_permille == 0
 }
 
+/// Runs the binary with `args` and info logging and asserts that it succeeded: its
+/// output, and its log (stderr).
+fn run_logged(args: &[&str]) -> (std::process::Output, String) {
+    let out = bin().args(args).env("RUST_LOG", "info").output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "{stderr}");
+    (out, stderr)
+}
+
 fn write_config(dir: &Path, text: &str) -> String {
     let p = dir.join("service.toml");
     std::fs::write(&p, text).unwrap();
@@ -369,22 +378,16 @@ fn sigterm_gives_stopping_a_final_stop_verdict_and_exit_0() {
 
 #[test]
 fn a_vanished_camera_is_reopened_and_corrupt_frames_are_rejected() {
-    let out = bin()
-        .args([
-            "run",
-            "--loop",
-            "--frames",
-            "30",
-            "--inject-disconnect",
-            "12",
-            "--inject-corrupt",
-            "3",
-        ])
-        .env("RUST_LOG", "info")
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
+    let (out, stderr) = run_logged(&[
+        "run",
+        "--loop",
+        "--frames",
+        "30",
+        "--inject-disconnect",
+        "12",
+        "--inject-corrupt",
+        "3",
+    ]);
     assert!(
         stderr.contains("injected disconnect") && stderr.contains("reopened"),
         "{stderr}"
@@ -423,13 +426,7 @@ fn a_camera_that_cannot_open_is_a_clear_error() {
 
 #[test]
 fn an_unplugged_link_does_not_stop_the_analysis() {
-    let out = bin()
-        .args(["run", "--frames", "10", "--link", "serial:/dev/no-such-tty"])
-        .env("RUST_LOG", "info")
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
+    let (_, stderr) = run_logged(&["run", "--frames", "10", "--link", "serial:/dev/no-such-tty"]);
     assert!(stderr.contains("/dev/no-such-tty"), "{stderr}");
     assert!(stderr.contains("10 analysed"), "{stderr}");
 }
@@ -539,19 +536,13 @@ fn a_mount_that_never_sees_part_of_a_track_whole_is_named_by_check_config_and_ru
     );
     assert!(!text.contains("warning"), "{text}");
 
-    let out = bin()
-        .args([
-            "run",
-            "--config",
-            &yawed,
-            "--camera",
-            "fake:fixtures/scenes",
-        ])
-        .env("RUST_LOG", "info")
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
+    let (_, stderr) = run_logged(&[
+        "run",
+        "--config",
+        &yawed,
+        "--camera",
+        "fake:fixtures/scenes",
+    ]);
     assert!(
         stderr.contains("never sees an obstacle 0.11 m high whole")
             && stderr.contains("+0.575, +0.625, +0.675"),
@@ -563,19 +554,13 @@ fn a_mount_that_never_sees_part_of_a_track_whole_is_named_by_check_config_and_ru
 fn the_service_levels_itself_from_recorded_tilt_states() {
     let dir = tempfile::tempdir().unwrap();
     let config = write_config(dir.path(), "[mount]\npitch_deg = 36.0\nauto_level = true\n");
-    let out = bin()
-        .args([
-            "run",
-            "--config",
-            &config,
-            "--camera",
-            "fake:fixtures/fakenect/ramp-step",
-        ])
-        .env("RUST_LOG", "info")
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
+    let (_, stderr) = run_logged(&[
+        "run",
+        "--config",
+        &config,
+        "--camera",
+        "fake:fixtures/fakenect/ramp-step",
+    ]);
     // The session's tilt dumps say 30° (examples/record_scene.rs).
     let pitch: f64 = stderr
         .split("auto-level: pitch ")
@@ -597,13 +582,7 @@ fn frames_of_the_wrong_size_are_rejected_and_counted_never_analysed() {
     }
     let small = DepthFrame::from_pixels(320, 240, vec![1500; 320 * 240]);
     std::fs::write(dir.path().join("b-small.png"), encode_png_depth(&small)).unwrap();
-    let out = bin()
-        .args(["run", "--camera", &format!("fake:{}", dir.path().display())])
-        .env("RUST_LOG", "info")
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "{stderr}");
+    let (out, stderr) = run_logged(&["run", "--camera", &format!("fake:{}", dir.path().display())]);
     assert!(stderr.contains("320x240 rejected"), "{stderr}");
     assert!(
         stderr.contains("2 analysed") && stderr.contains("1 rejected"),
