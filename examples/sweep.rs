@@ -336,10 +336,7 @@ fn main() {
         // is not seen, so any verdict but go is right (a go is judged as usual).
         let unseen_tops = sim::sight::unseen_tops(&terrain, &config);
         let strike = Strike::of(&terrain, &config, &want);
-        let never_whole: Vec<String> = Coverage::for_rover(&config)
-            .never_whole()
-            .map(|s| format!("{:+.3}", s.y_m))
-            .collect();
+        let never_whole = Coverage::for_rover(&config).never_whole_at();
         for noisy in [false, true] {
             let mut f = frame.clone();
             let noise_seed = seed * 1000 + i as u64;
@@ -375,8 +372,7 @@ fn main() {
                 if !never_whole.is_empty() {
                     uncovered_false_go += 1;
                     println!(
-                        "COVER {label}: the mount never sees an obstacle a wheel radius high whole at y = {} m",
-                        never_whole.join(", ")
+                        "COVER {label}: the mount never sees an obstacle a wheel radius high whole at y = {never_whole} m"
                     );
                 }
                 if let Some(drive) = approach {

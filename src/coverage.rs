@@ -15,11 +15,13 @@
 //! condition, not a sufficient one: a strip seen whole still needs the ground before
 //! an obstacle for the step test.
 //!
-//! The in-view test is [`crate::analysis::visibility::in_view`]'s for one point: half
-//! a pixel clear of the image's edges, within the range limits kept 0.1 m clear.
+//! A point is in view as the analysis's expected cells ask of their corners
+//! (`analysis::point_in_view`): half a pixel clear of the image's edges,
+//! within the range limits kept 0.1 m clear.
 
 use nalgebra::Vector3;
 
+use crate::analysis::{point_in_view, region_of, view_depths};
 use crate::config::Config;
 use crate::grid::GridSpec;
 use crate::projection::Projector;
@@ -27,10 +29,6 @@ use crate::verdict::Side;
 
 /// How far apart along a strip [`Coverage::of`] tries distances, metres.
 const STEP_M: f64 = 0.01;
-
-/// How far inside the range limits a point must lie to count as in view, metres (as
-/// the analysis's expected cells ask).
-const RANGE_MARGIN_M: f64 = 0.1;
 
 /// What the mount sees of one strip of the corridor.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,18 +65,12 @@ impl Coverage {
         let spec = GridSpec::from_config(config);
         let cam = &config.camera;
         let projector = Projector::new(config, cam.width as usize, cam.height as usize);
-        let (near, far) = (
-            cam.min_range_m + RANGE_MARGIN_M,
-            cam.max_range_m - RANGE_MARGIN_M,
-        );
-        let in_view = |x: f64, y: f64, z: f64| {
-            projector
-                .project(Vector3::new(x, y, z))
-                .is_some_and(|(u, v, d)| projector.in_image(u, v) && d >= near && d <= far)
-        };
+        let depths = view_depths(config);
+        let in_view =
+            |x: f64, y: f64, z: f64| point_in_view(&projector, depths, Vector3::new(x, y, z));
         let length_m = config.analysis.corridor_length_m;
         let steps = (length_m / STEP_M).round() as usize;
-        let bhw = config.rover.belly_half_width_m;
+        let bhw = config.rover.belly_half_width_m as f32;
         let strips = (0..spec.ny)
             .map(|iy| {
                 let y = f64::from(spec.y_centre(iy));
@@ -88,16 +80,9 @@ impl Coverage {
                 let whole_m = whole
                     .next()
                     .map(|first| (first, whole.next_back().unwrap_or(first)));
-                let band = if y.abs() < bhw {
-                    Side::Centre
-                } else if y > 0.0 {
-                    Side::Left
-                } else {
-                    Side::Right
-                };
                 StripCoverage {
                     y_m: y,
-                    band,
+                    band: region_of(spec.y_centre(iy), bhw).side(),
                     ground_from_m,
                     whole_m,
                 }
@@ -119,6 +104,16 @@ impl Coverage {
     /// The strips no frame sees such a post whole in.
     pub fn never_whole(&self) -> impl Iterator<Item = &StripCoverage> {
         self.strips.iter().filter(|s| s.whole_m.is_none())
+    }
+
+    /// Where the strips never seen whole lie across the corridor, for a log line:
+    /// their centres, metres, signed (left +), comma-separated; empty if none.
+    pub fn never_whole_at(&self) -> String {
+        let at: Vec<String> = self
+            .never_whole()
+            .map(|s| format!("{:+.3}", s.y_m))
+            .collect();
+        at.join(", ")
     }
 
     /// A short account for people, one line per band and one per strip never seen
@@ -194,8 +189,9 @@ mod tests {
         let depth = d * p.cos() + (hc - z) * p.sin();
         let up = d * p.sin() - (hc - z) * p.cos(); // how far above the axis, metres
         let dy = y - c.mount.y_m;
-        depth >= c.camera.min_range_m + RANGE_MARGIN_M
-            && depth <= c.camera.max_range_m - RANGE_MARGIN_M
+        // The range limits kept 0.1 m clear.
+        depth >= c.camera.min_range_m + 0.1
+            && depth <= c.camera.max_range_m - 0.1
             && up <= top * depth
             && -up <= bottom * depth
             && dy <= left * depth

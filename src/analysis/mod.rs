@@ -10,6 +10,8 @@ pub mod plane;
 mod tilt;
 mod visibility;
 
+pub(crate) use visibility::{point_in_view, view_depths};
+
 use std::time::Instant;
 
 use crate::config::{Config, RoverConfig};
@@ -191,7 +193,7 @@ impl<'a> Frame<'a> {
 
 /// The region of a strip whose centre lies `y` metres left of the centre line, with
 /// a belly band `bhw` metres either side of it.
-fn region_of(y: f32, bhw: f32) -> Region {
+pub(crate) fn region_of(y: f32, bhw: f32) -> Region {
     if y.abs() < bhw {
         Region::Belly
     } else if y > 0.0 {

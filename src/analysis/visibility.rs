@@ -25,7 +25,7 @@ pub fn expected_cells(spec: &GridSpec, projector: &Projector, config: &Config) -
 
 /// Whether cell (ix, iy)'s whole square, at height `z` (metres, rover frame), falls
 /// inside the image (half a pixel clear of its edges) and the range limits (kept
-/// [`RANGE_MARGIN_M`] clear).
+/// [`RANGE_MARGIN_M`] clear): each of its corners is [`point_in_view`].
 pub fn in_view(
     spec: &GridSpec,
     projector: &Projector,
@@ -34,20 +34,40 @@ pub fn in_view(
     iy: usize,
     z: f32,
 ) -> bool {
-    let (near, far) = (
-        config.camera.min_range_m + RANGE_MARGIN_M,
-        config.camera.max_range_m - RANGE_MARGIN_M,
-    );
+    let depths = view_depths(config);
     let vs = f64::from(spec.voxel_m);
     let x0 = f64::from(spec.origin[0]) + ix as f64 * vs;
     let y0 = f64::from(spec.origin[1]) + iy as f64 * vs;
     [(0.0, 0.0), (vs, 0.0), (0.0, vs), (vs, vs)]
         .iter()
         .all(|(dx, dy)| {
-            projector
-                .project(Vector3::new(x0 + dx, y0 + dy, f64::from(z)))
-                .is_some_and(|(u, v, d)| projector.in_image(u, v) && d >= near && d <= far)
+            point_in_view(
+                projector,
+                depths,
+                Vector3::new(x0 + dx, y0 + dy, f64::from(z)),
+            )
         })
+}
+
+/// The optical depths between which a point counts as in view, metres: the camera's
+/// range limits, kept [`RANGE_MARGIN_M`] clear.
+pub(crate) fn view_depths(config: &Config) -> (f64, f64) {
+    (
+        config.camera.min_range_m + RANGE_MARGIN_M,
+        config.camera.max_range_m - RANGE_MARGIN_M,
+    )
+}
+
+/// Whether rover-frame point `p` (metres) falls inside the image, half a pixel clear
+/// of its edges, at an optical depth within `(near, far)` ([`view_depths`]).
+pub(crate) fn point_in_view(
+    projector: &Projector,
+    (near, far): (f64, f64),
+    p: Vector3<f64>,
+) -> bool {
+    projector
+        .project(p)
+        .is_some_and(|(u, v, d)| projector.in_image(u, v) && d >= near && d <= far)
 }
 
 /// Whether the camera's line of sight to the centre of cell (ix, iy) at height

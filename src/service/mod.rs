@@ -171,17 +171,14 @@ fn get(c: &AtomicU64) -> u64 {
 /// obstacles no frame can measure. With `mount.auto_level`, for the configured pose.
 fn warn_uncovered(config: &Config) {
     let coverage = Coverage::for_rover(config);
-    let never: Vec<String> = coverage
-        .never_whole()
-        .map(|s| format!("{:+.3}", s.y_m))
-        .collect();
+    let never = coverage.never_whole_at();
     if !never.is_empty() {
         log::warn!(
             "this mount never sees an obstacle {:.2} m high whole in the corridor's strips \
              at y = {} m: how high anything there stands is never measured \
              (`rover-terrain check-config` shows the coverage)",
             coverage.height_m,
-            never.join(", ")
+            never
         );
     }
 }

@@ -597,11 +597,10 @@ fn fronts<'c>(
 /// not that high shows the top level, a low step's seen whole past its face: without
 /// it a 4.5 cm step the view ends on was `unknown`, `sweep -- hazards 100 10704
 /// random` #82; its noisy frame, the top seen in the last cut cell only, still is).
-/// The
-/// far edge alone let a 19.4 cm mound 0.5 m up an 11° ramp, seen rising 5.6 cm over
-/// 6.5 cm into the cut, pass as climbing 29° (`sweep -- natural 100 10902 random 10`
-/// #87). And [`FRONT_RISING_M`] or more above the upper
-/// surface (`crest`) of the front's cells before the cut (still rising where the view
+/// The far edge alone let a 19.4 cm mound 0.5 m up an 11° ramp, seen rising 5.6 cm
+/// over 6.5 cm into the cut, pass as climbing 29° (`sweep -- natural 100 10902 random
+/// 10` #87). And [`FRONT_RISING_M`] or more above the upper surface (`crest`) of the
+/// front's cells before the cut (still rising where the view
 /// ends: a stone seen whole, its top before the cut, is the step test's). Not their top
 /// voxels: a few of the cut's points that depth noise moved nearer made a voxel 10.2
 /// cm up in the last cell before the cut, as high as the cut cell's top, and a 15.2 cm
