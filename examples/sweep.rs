@@ -308,10 +308,7 @@ fn main() {
     } = Options::parse();
     let mode = mode.as_str();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let (mut failures, mut total, mut false_go, mut excused) = (0, 0, 0, (0, 0));
-    let mut uncovered_false_go = 0;
-    let (mut top_excused, mut belly_excused) = (0, 0);
-    let mut not_drawn = 0;
+    let mut t = Tally::default();
     let mut approaches = Approaches::default();
     for i in 0..n {
         let (terrain, want, mut config, tol) = draw(&mut rng, mode, i, random_rig, family);
@@ -324,7 +321,7 @@ fn main() {
         let mut pipeline = Pipeline::new(config.clone()).expect("config works");
         let frame = if exact {
             let Some(frame) = second::frame(&terrain, &config) else {
-                not_drawn += 1;
+                t.not_drawn += 1;
                 continue;
             };
             frame
@@ -345,14 +342,14 @@ fn main() {
             }
             let v = pipeline.process(&f).expect("frame fits");
             if unseen {
-                excused.0 += 1;
-                excused.1 += usize::from(v.decision != Decision::Go);
+                t.grazing.0 += 1;
+                t.grazing.1 += usize::from(v.decision != Decision::Go);
             }
             let top_excused_here =
                 sim::sight::not_go_for_unseen_tops(v, &unseen_tops, &config.rover);
-            top_excused += usize::from(top_excused_here);
+            t.top_excused += usize::from(top_excused_here);
             let belly_excused_here = strike.excuses(v);
-            belly_excused += usize::from(belly_excused_here);
+            t.belly_excused += usize::from(belly_excused_here);
             let over_strike = strike.go_over(v);
             let fails = if let Some(x) = over_strike {
                 vec![format!(
@@ -365,12 +362,12 @@ fn main() {
             };
             let label = format!("#{i} noisy={noisy}");
             print.frame(&label, v, &want, (&unseen_tops, top_excused_here));
-            total += 1;
+            t.total += 1;
             if v.decision == Decision::Go && (want.verdict != Decision::Go || over_strike.is_some())
             {
-                false_go += 1;
+                t.false_go += 1;
                 if !never_whole.is_empty() {
-                    uncovered_false_go += 1;
+                    t.uncovered_false_go += 1;
                     println!(
                         "COVER {label}: the mount never sees an obstacle a wheel radius high whole at y = {never_whole} m"
                     );
@@ -384,7 +381,7 @@ fn main() {
                 dump(dir, i, &terrain, &config);
             }
             if !fails.is_empty() {
-                failures += 1;
+                t.failures += 1;
                 println!(
                     "FAIL #{i} noisy={noisy} {:?} mount={:?} cam={}x{}: {fails:?} hazards={:?} feature={:?}",
                     terrain.elements, config.mount, config.camera.width, config.camera.height, v.hazards, v.feature
@@ -395,30 +392,67 @@ fn main() {
             }
         }
     }
-    println!(
-        "{} passed, {failures} failed, {false_go} false go",
-        total - failures
-    );
-    if exact {
-        println!("{not_drawn} scenes not drawn (not made of planes and rocks)");
-    }
-    if let Some(drive) = approach {
-        approaches.report(drive);
-    }
-    println!(
-        "{top_excused} frames not go for a stone, rock, block or step whose top is out of view (passed)"
-    );
-    println!(
-        "{uncovered_false_go} false go frames on a mount that never sees part of the corridor whole (COVER)"
-    );
-    println!(
-        "{belly_excused} frames not go where the belly strikes ground drawn as climbable (passed)"
-    );
-    if mode == "oblique" || FAMILY_MODES.contains(&mode) {
+    t.report(mode, exact, approach.map(|d| (d, &approaches)));
+}
+
+/// What a sweep counts over its frames.
+#[derive(Debug, Default)]
+struct Tally {
+    /// Frames analysed.
+    total: usize,
+    /// Frames that failed their expectation.
+    failures: usize,
+    /// Frames that went where a stop was due.
+    false_go: usize,
+    /// Of those, frames on a mount that never sees part of the corridor whole.
+    uncovered_false_go: usize,
+    /// Frames that met a surface under [`GRAZING_DEG`], and of them those not go.
+    grazing: (usize, usize),
+    /// Frames not go for an obstacle whose top is out of view.
+    top_excused: usize,
+    /// Frames not go where the belly strikes ground drawn as climbable.
+    belly_excused: usize,
+    /// Scenes the second renderer could not draw (`EXACT=1`).
+    not_drawn: usize,
+}
+
+impl Tally {
+    /// Prints the summary: the counts, with `EXACT=1` the scenes not drawn, with
+    /// `APPROACH` the drives' report, then what was excused.
+    fn report(&self, mode: &str, exact: bool, approach: Option<(Drive, &Approaches)>) {
         println!(
-            "{} frames met a surface under {GRAZING_DEG}° (any verdict passes), {} of them not go",
-            excused.0, excused.1
+            "{} passed, {} failed, {} false go",
+            self.total - self.failures,
+            self.failures,
+            self.false_go
         );
+        if exact {
+            println!(
+                "{} scenes not drawn (not made of planes and rocks)",
+                self.not_drawn
+            );
+        }
+        if let Some((drive, approaches)) = approach {
+            approaches.report(drive);
+        }
+        println!(
+            "{} frames not go for a stone, rock, block or step whose top is out of view (passed)",
+            self.top_excused
+        );
+        println!(
+            "{} false go frames on a mount that never sees part of the corridor whole (COVER)",
+            self.uncovered_false_go
+        );
+        println!(
+            "{} frames not go where the belly strikes ground drawn as climbable (passed)",
+            self.belly_excused
+        );
+        if mode == "oblique" || FAMILY_MODES.contains(&mode) {
+            println!(
+                "{} frames met a surface under {GRAZING_DEG}° (any verdict passes), {} of them not go",
+                self.grazing.0, self.grazing.1
+            );
+        }
     }
 }
 
