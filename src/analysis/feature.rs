@@ -8,12 +8,14 @@
 //!    same direction; which tracks are affected, and how, gives the workcase family.
 //! 3. The face is fitted as a plane `z = a·x + b·y + c` to the cells past the onsets
 //!    (weighted by their point counts after a first unweighted fit; cells holding a
-//!    face along their strip whose ground cannot be told are left out), iteratively: cells off the plane by three standard deviations (the smaller of
-//!    the RMS's and the median residual's estimate: the crest, a plateau, a wall's
-//!    points along a band edge) and cells that straddle the toe line are dropped,
-//!    as are whole strips whose cells lie off it together (a band's sloping side in a
-//!    track's edge strip), then the fit is extended to every consistent cell of the
-//!    affected strips.
+//!    face along their strip whose ground cannot be told are left out), iteratively:
+//!    cells off the plane by three standard deviations (the smaller of the RMS's and
+//!    the median residual's estimate: the crest, a plateau, a wall's points along a
+//!    band edge) and cells that straddle the toe line are dropped, as are whole strips
+//!    whose cells lie off it together (a band's sloping side in a track's edge strip),
+//!    then the fit is extended to every consistent cell of the affected strips. A
+//!    face under one track also leaves out, from its first window's fit on, its edge
+//!    strips that stand a share of its height low (the strip beside a sloping side).
 //! 4. The toe line is where the face meets the ground plane z = 0: its distance is
 //!    read at the centre line (both tracks) or the affected track's centre; the
 //!    gradient is the plane's steepest slope; alpha is `atan(b/a)`, positive when
@@ -145,17 +147,19 @@ impl Face {
     }
 }
 
-/// Step 3: fit the face of the chosen tracks as a plane (see the module doc).
+/// Step 3: fit the face of the tracks `a` chooses, its way, as a plane (see the module
+/// doc); with `sag`, and one track chosen, without its sagging edge strips
+/// ([`without_sagging_edges`]).
 fn fit_face(
     f: &Frame,
     g: &Ground,
     onset: &[Option<Onset>],
     sel: &mut Selection,
-    dir: Dir,
-    use_left: bool,
-    use_right: bool,
+    a: Affected,
+    sag: bool,
 ) -> Option<Face> {
     let s = f.spec;
+    let (dir, use_left, use_right) = (a.dir, a.left, a.right);
     let threshold = f.cfg.analysis.rise_threshold_m as f32;
     // Only the chosen strips with an onset the face's way take part, and only from
     // TOE_BAND_CELLS before it: no other cell is ever eligible.
@@ -228,11 +232,19 @@ fn fit_face(
     }
     let mut plane: Option<Plane> = None;
     for iteration in 0..10 {
-        let Some((p, tol)) = weighted_plane(f, g, sel, iteration) else {
+        let Some((mut p, tol)) = weighted_plane(f, g, sel, iteration) else {
             break;
         };
         if iteration >= 1 {
             sel.reject_strips(f, g, &p);
+        }
+        // Judged on the first window's weighted fit, before the fit runs on: past a
+        // capped descent's face, a sagging strip that tilts the plane brings the floor
+        // within the tolerance, and the floor's cells flatten it further.
+        if iteration == 1 && sag && use_left != use_right {
+            if let Some(q) = without_sagging_edges(f, g, sel) {
+                p = q;
+            }
         }
         let mut changed = false;
         for (iy, o) in strips() {
@@ -265,6 +277,99 @@ fn fit_face(
         }
     }
     plane.map(|p| Face::measured(f, g, sel, p, p))
+}
+
+/// Least sag of an edge strip, as a share of the face's height, that
+/// [`without_sagging_edges`] leaves out: 1 %.
+const SAG_MIN_SHARE: f64 = 0.01;
+/// How many standard errors the sag must also pass.
+const SAG_SES: f64 = 5.0;
+/// Least strips the fit keeps besides one [`without_sagging_edges`] judges.
+const SAG_MIN_OTHER_STRIPS: usize = 3;
+
+/// The plane of the cells `sel` takes for one track's face, refitted without the
+/// strips at the edges of the track's taken strips whose ground stands a share of the
+/// face's height nearer the ground than the face (the strip beside its sloping side),
+/// which `sel` then leaves out; `None` where no strip sags so. [`fit_face`] asks on
+/// its first window's weighted fit, before the fit runs on.
+///
+/// A face whose side slopes down to the ground beside it (a ramp on one track whose
+/// side is no wall but a bank) stands lower, near its side, by a share of its height:
+/// a strip there holds ground at `s · h` where the face stands at `h`, `s < 1`. The
+/// strip wholly on the bank lies off the face together and [`Selection::reject_strips`]
+/// leaves it out; the strip next to it, partly on the bank, stands off by a few per
+/// cent, within the residual tolerance, and tilts the plane across the track: 2.6°
+/// of alpha for a 23° ramp whose 13.5 cm bank reaches 7 cm into the track (`sweep --
+/// bevelled 100 11006 random 0` #87). So each track's outermost taken strips are
+/// judged against the plane of the others: their residuals `r` against that plane's
+/// height `h` give the share `k = Σ r·h / Σ h²` (the least-squares slope through the
+/// toe line, where both are 0), and a strip whose share is below −[`SAG_MIN_SHARE`]
+/// by [`SAG_SES`] standard errors (the other cells' spread over `√Σ h²`) is left out,
+/// and the next strip in judged in its turn. On rough ground the spread hides a sag of
+/// a few per cent, and the fit stands as it is.
+///
+/// Judged on the converged fit instead, a capped descent's sagging strip had already
+/// tilted the plane until the floor past the face came within the tolerance, and the
+/// floor's cells flattened it further: toe 6 cm early, 14.4° read 10.6° (`sweep --
+/// bevelled 100 12 default 3` #28). Only the face of one track is judged, once told
+/// from the other's ([`one_face_or_nearer`]): judged in the fits that tell them apart,
+/// the strips that showed two faces went, and left them one (`sweep -- bevelled 100
+/// 10312 random 9` #68, a 19.6° ramp under the right track from 1.41 m and a 17.9° one
+/// under the left from 1.76 m: workcase 7).
+fn without_sagging_edges(f: &Frame, g: &Ground, sel: &mut Selection) -> Option<Plane> {
+    let s = f.spec;
+    let mut p = None;
+    let weight = |cell: &Cell| f64::from(cell.n);
+    // Strips already left out take no part.
+    for (iy, _) in sel.off_strip.iter().enumerate().filter(|(_, &off)| off) {
+        for ix in 0..s.nx {
+            sel.on[s.cell(ix, iy)] = false;
+        }
+    }
+    let count = |sel: &Selection, iy: usize| (0..s.nx).filter(|&ix| sel.on[s.cell(ix, iy)]).count();
+    for region in [Region::Left, Region::Right] {
+        let strips = || (0..s.ny).filter(move |&iy| f.region[iy] == region);
+        loop {
+            let (mut first, mut last, mut judged) = (usize::MAX, 0, 0);
+            for iy in strips().filter(|&iy| count(sel, iy) >= STRIP_MIN_CELLS) {
+                (first, last, judged) = (first.min(iy), iy, judged + 1);
+            }
+            if judged < SAG_MIN_OTHER_STRIPS + 1 {
+                break;
+            }
+            // The strip judged, and which way its track's edge lies from it.
+            let sagging = [(first, false), (last, true)].into_iter().find(|&(iy, _)| {
+                let others = || sel.taken(f).filter(|&(c, _)| s.strip_of(c) != iy);
+                let Some(fit) = fit_cells(g, others, weight) else {
+                    return false;
+                };
+                let (mut rh, mut hh) = (0.0, 0.0);
+                for (c, cell) in sel.taken(f).filter(|&(c, _)| s.strip_of(c) == iy) {
+                    let h = fit.plane.z(f64::from(cell.x), f64::from(cell.y));
+                    rh += g.off(c, cell, &fit.plane) * h;
+                    hh += h * h;
+                }
+                let share = rh / hh.max(1e-12);
+                let se = fit.sigma / hh.max(1e-12).sqrt();
+                share < -SAG_MIN_SHARE && -share > SAG_SES * se
+            });
+            let Some((iy, outward_up)) = sagging else {
+                break;
+            };
+            // The strip and any thinner ones past it, toward the edge, lie on the side.
+            for k in strips().filter(|&k| if outward_up { k >= iy } else { k <= iy }) {
+                sel.off_strip[k] = true;
+                for ix in 0..s.nx {
+                    sel.on[s.cell(ix, k)] = false;
+                }
+            }
+            match fit_cells(g, || sel.taken(f), weight) {
+                Some(fit) => p = Some(fit.plane),
+                None => break,
+            }
+        }
+    }
+    p
 }
 
 /// How far past the toe line, along the gradient, a rounded toe may bend the ground
@@ -1234,8 +1339,7 @@ fn one_face_or_nearer(
     sel: &mut Selection,
     mut a: Affected,
 ) -> (Affected, Option<Face>) {
-    let both = fit_face(f, g, onset, sel, a.dir, a.left, a.right)
-        .map(|face| face.past_rounding(f, g, sel, a.dir));
+    let both = fit_face(f, g, onset, sel, a, true).map(|face| face.past_rounding(f, g, sel, a.dir));
     let Some(both) = both.filter(|_| a.left && a.right) else {
         return (a, both);
     };
@@ -1247,22 +1351,25 @@ fn one_face_or_nearer(
     let threshold = f.cfg.analysis.rise_threshold_m;
     let rises_at = |p: &Plane, y: f64| p.toe_x(y) + threshold / p.a.abs();
     let mut one = |left: bool| {
-        let face = fit_face(f, g, onset, sel, a.dir, left, !left)?;
+        let track = Affected {
+            left,
+            right: !left,
+            ..a
+        };
+        let face = fit_face(f, g, onset, sel, track, false)?;
         let (own, n) = residuals(f, g, sel, &face.fit);
         let (joint, _) = residuals(f, g, sel, &both.fit);
         Some((face, own, joint, n))
     };
     if let (Some(l), Some(r)) = (one(true), one(false)) {
         if !same_face(l.1 + r.1, l.2 + r.2, l.3 + r.3) {
-            // The selection holds the right track's fit, the last made: the left
-            // track's face is fitted again to measure it over its own cells.
-            let nearer = if rises_at(&l.0.plane, tc) <= rises_at(&r.0.plane, -tc) {
+            // The nearer track's face is fitted again, without its sagging edges.
+            if rises_at(&l.0.plane, tc) <= rises_at(&r.0.plane, -tc) {
                 a.right = false;
-                fit_face(f, g, onset, sel, a.dir, true, false)
             } else {
                 a.left = false;
-                Some(r.0)
-            };
+            }
+            let nearer = fit_face(f, g, onset, sel, a, true);
             return (a, nearer.map(|face| face.past_rounding(f, g, sel, a.dir)));
         }
     }
@@ -1395,6 +1502,15 @@ mod tests {
         sc
     }
 
+    /// Both tracks affected, `dir` their way.
+    fn both_tracks(dir: Dir) -> Affected {
+        Affected {
+            dir,
+            left: true,
+            right: true,
+        }
+    }
+
     /// The face of a rise under both tracks.
     fn fitted(f: &Frame) -> Face {
         let mut sc = prepared(f);
@@ -1402,7 +1518,15 @@ mod tests {
             z: &sc.z,
             usable: &sc.usable,
         };
-        let face = fit_face(f, &g, &sc.onset, &mut sc.selection, Dir::Up, true, true).unwrap();
+        let face = fit_face(
+            f,
+            &g,
+            &sc.onset,
+            &mut sc.selection,
+            both_tracks(Dir::Up),
+            false,
+        )
+        .unwrap();
         face.past_rounding(f, &g, &mut sc.selection, Dir::Up)
     }
 
@@ -1582,9 +1706,16 @@ mod tests {
                     usable: &sc.usable,
                 };
                 let dir = if gradient > 0.0 { Dir::Up } else { Dir::Down };
-                let face = fit_face(&f, &g, &sc.onset, &mut sc.selection, dir, true, true)
-                    .unwrap()
-                    .past_rounding(&f, &g, &mut sc.selection, dir);
+                let face = fit_face(
+                    &f,
+                    &g,
+                    &sc.onset,
+                    &mut sc.selection,
+                    both_tracks(dir),
+                    false,
+                )
+                .unwrap()
+                .past_rounding(&f, &g, &mut sc.selection, dir);
                 let (plane, fit) = (face.plane, face.fit);
                 let case = format!("{gradient}° rounded {round:?}: {plane:?}, fit {fit:?}");
                 assert!((plane.toe_x(0.0) - toe).abs() < 0.001, "{case}");
