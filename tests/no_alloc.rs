@@ -52,6 +52,18 @@ fn processing_allocates_nothing_after_warm_up() {
             x_m: 1.5,
             depth_m: 1.0,
         }]),
+        // A diagonal ramp under the left track whose sides slope over 13 cm: the face
+        // fit leaves out the two edge strips that stand a share of its height low.
+        Terrain::new(vec![ramp(
+            1.0,
+            18.0,
+            20.0,
+            Extent::Bevelled {
+                from_m: 0.2,
+                to_m: 0.7,
+                side_m: 0.13,
+            },
+        )]),
     ];
     let mut frames: Vec<_> = scenes.iter().map(|t| sim::render(t, &config)).collect();
     let mut noisy = frames[1].clone();
