@@ -174,34 +174,7 @@ fn fit_face(
         let c = s.cell(ix, iy);
         ix >= o.ix && g.usable[c] && status(g.z[c], threshold) == Some(dir)
     };
-    // The first window reaches FIRST_WINDOW_M past the onset, and on to the next seen
-    // cell when none lies within it: ground met at a grazing angle is seen one pixel
-    // row every several cells, and a window holding the onset's row alone fits no
-    // slope. It holds the strip's cells up to the returned row.
-    let window_end = |iy: usize, o: Onset| {
-        let reach = s.x_centre(o.ix) + FIRST_WINDOW_M;
-        let within = (o.ix..s.nx)
-            .take_while(|&ix| s.x_centre(ix) <= reach)
-            .last();
-        let next_seen = (o.ix + 1..s.nx)
-            .find(|&k| f.seen[s.cell(k, iy)])
-            .unwrap_or(s.nx);
-        within.unwrap_or(o.ix).max(next_seen)
-    };
-    let vs = f64::from(s.voxel_m);
-    // Whether the whole cell lies past the toe line: the plane is linear, so its
-    // lowest corner over the cell (its highest, for a fall) decides.
-    let up = dir == Dir::Up;
-    let past_toe = |p: &Plane, ix: usize, iy: usize| {
-        let x = f64::from(s.origin[0]) + ix as f64 * vs + if (p.a < 0.0) == up { vs } else { 0.0 };
-        let y = f64::from(s.origin[1]) + iy as f64 * vs + if (p.b < 0.0) == up { vs } else { 0.0 };
-        let z = p.z(x, y);
-        if up {
-            z > 0.0
-        } else {
-            z < 0.0
-        }
-    };
+    let window_end = |iy: usize, o: Onset| first_window_end(f, iy, o);
     // Once the plane is known, the cells where it runs between the ground and the rise
     // threshold (the band along its toe, up to TOE_BAND_CELLS before the strip's
     // onset) take part whatever their height: keeping only those over the threshold
@@ -263,7 +236,7 @@ fn fit_face(
                 let r = g.off(c, cell, &p);
                 let ok = !sel.off_strip[iy]
                     && r.abs() <= tol
-                    && past_toe(&p, ix, iy)
+                    && past_toe(s, &p, dir, ix, iy)
                     && (iteration >= 2 || ix <= end);
                 if ok != sel.on[c] {
                     sel.on[c] = ok;
@@ -277,6 +250,38 @@ fn fit_face(
         }
     }
     plane.map(|p| Face::measured(f, g, sel, p, p))
+}
+
+/// The last row of strip `iy`'s first window past its onset `o`: [`FIRST_WINDOW_M`] past
+/// the onset, and on to the next seen cell when none lies within it (ground met at a
+/// grazing angle is seen one pixel row every several cells, and a window holding the
+/// onset's row alone fits no slope).
+fn first_window_end(f: &Frame, iy: usize, o: Onset) -> usize {
+    let s = f.spec;
+    let reach = s.x_centre(o.ix) + FIRST_WINDOW_M;
+    let within = (o.ix..s.nx)
+        .take_while(|&ix| s.x_centre(ix) <= reach)
+        .last();
+    let next_seen = (o.ix + 1..s.nx)
+        .find(|&k| f.seen[s.cell(k, iy)])
+        .unwrap_or(s.nx);
+    within.unwrap_or(o.ix).max(next_seen)
+}
+
+/// Whether the whole of cell (ix, iy) lies past the toe line of plane `p`, a face
+/// going `dir`: the plane is linear, so its lowest corner over the cell (its highest,
+/// for a fall) decides.
+fn past_toe(s: &GridSpec, p: &Plane, dir: Dir, ix: usize, iy: usize) -> bool {
+    let vs = f64::from(s.voxel_m);
+    let up = dir == Dir::Up;
+    let x = f64::from(s.origin[0]) + ix as f64 * vs + if (p.a < 0.0) == up { vs } else { 0.0 };
+    let y = f64::from(s.origin[1]) + iy as f64 * vs + if (p.b < 0.0) == up { vs } else { 0.0 };
+    let z = p.z(x, y);
+    if up {
+        z > 0.0
+    } else {
+        z < 0.0
+    }
 }
 
 /// Least sag of an edge strip, as a share of the face's height, that
@@ -321,9 +326,9 @@ fn without_sagging_edges(f: &Frame, g: &Ground, sel: &mut Selection) -> Option<P
     let mut p = None;
     let weight = |cell: &Cell| f64::from(cell.n);
     // Strips already left out take no part.
-    for (iy, _) in sel.off_strip.iter().enumerate().filter(|(_, &off)| off) {
-        for ix in 0..s.nx {
-            sel.on[s.cell(ix, iy)] = false;
+    for iy in 0..s.ny {
+        if sel.off_strip[iy] {
+            sel.leave_out(s, iy);
         }
     }
     let count = |sel: &Selection, iy: usize| (0..s.nx).filter(|&ix| sel.on[s.cell(ix, iy)]).count();
@@ -358,10 +363,7 @@ fn without_sagging_edges(f: &Frame, g: &Ground, sel: &mut Selection) -> Option<P
             };
             // The strip and any thinner ones past it, toward the edge, lie on the side.
             for k in strips().filter(|&k| if outward_up { k >= iy } else { k <= iy }) {
-                sel.off_strip[k] = true;
-                for ix in 0..s.nx {
-                    sel.on[s.cell(ix, k)] = false;
-                }
+                sel.leave_out(s, k);
             }
             match fit_cells(g, || sel.taken(f), weight) {
                 Some(fit) => p = Some(fit.plane),
@@ -709,6 +711,14 @@ impl Selection {
     fn clear(&mut self) {
         self.on.fill(false);
         self.off_strip.fill(false);
+    }
+
+    /// Leave strip `iy` out of the fit, its cells untaken.
+    fn leave_out(&mut self, s: &GridSpec, iy: usize) {
+        self.off_strip[iy] = true;
+        for ix in 0..s.nx {
+            self.on[s.cell(ix, iy)] = false;
+        }
     }
 
     /// Mark the strips whose taken cells lie off plane `p` together: their mean
