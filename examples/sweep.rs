@@ -20,8 +20,8 @@
 //! block in a track, ditches, a too-steep ramp met obliquely), also on random rigs,
 //! where any verdict but go passes (a ditch whose floor the camera cannot see is
 //! unknown ground); `-- posts N SEED`, a post 3-8 cm square and 16-50 cm high in a
-//! track, on flat or rough ground or up a one-track ramp, on random rigs, where
-//! likewise any verdict but go passes; `-- oblique N SEED`, climbable ramps up and
+//! track, on flat or rough ground or up a one-track ramp, on random rigs that see it
+//! whole (its base and its top), where likewise any verdict but go passes; `-- oblique N SEED`, climbable ramps up and
 //! down whose toe line runs at 20-60° to the axle, on random rigs, judged go or not,
 //! except where the camera meets the surface in the tracks at under `GRAZING_DEG` (a
 //! descent as steep as the line of sight to it is not seen there): any verdict
@@ -638,17 +638,25 @@ fn draw(
 ) -> (Terrain, Expectation, Config, (Tolerance, Tolerance)) {
     let tol = (CLEAN, NOISY);
     match mode {
-        // On random rigs (`edges`, `posts` and `oblique` always, `hazards` when
-        // asked), each scene where its rig sees both tracks.
-        "edges" | "posts" | "oblique" | "hazards" if random_rig || mode != "hazards" => {
+        // Posts narrower than a cell or two in a track, on a random rig that sees one
+        // whole (a rig that sees none is drawn again).
+        "posts" => (0..100)
+            .find_map(|_| {
+                let rig = families::Rig::random(rng);
+                let at = families::judged_span(&rig.config);
+                random::post_scene_within(rng, &rig.config, at)
+                    .map(|(t, w)| (t, w, rig.config, tol))
+            })
+            .expect("one of 100 random rigs sees a post whole"),
+        // On random rigs (`edges` and `oblique` always, `hazards` when asked), each
+        // scene where its rig sees both tracks.
+        "edges" | "oblique" | "hazards" if random_rig || mode != "hazards" => {
             let rig = families::Rig::random(rng);
             let at = families::judged_span(&rig.config);
             let (t, w) = match mode {
                 "hazards" => random::hazard_scene_within(rng, i, at),
                 // Impassable edges the hazard sweep does not draw.
                 "edges" => random::edge_scene_within(rng, i, at),
-                // Posts narrower than a cell or two in a track.
-                "posts" => random::post_scene_within(rng, &rig.config, at),
                 // Climbable ramps up and down met obliquely.
                 _ => random::oblique_scene_within(rng, at),
             };
