@@ -4050,6 +4050,42 @@ fn a_capped_descent_under_one_track_whose_sides_slope_is_measured_on_its_face_no
 }
 
 #[test]
+fn a_ramp_cell_past_the_inner_strips_horizon_is_no_step_in_the_edge_strip() {
+    // A 22.9° ramp under the right track, 0.79 m high past the image's top, its sides
+    // sloping over 11.5 cm, and a 15.5° ramp under the left (`sweep -- bevelled 100
+    // 11112 random 9` #85, clean), seen by a 320×240 camera 0.92 m high rolled 6.4°.
+    // In the track's inner edge strip one cell 2.95 m out holds three points, all at
+    // the ramp's full height; the cells around it read the side's mean. The wheels on
+    // the cells before rest on it, 16 cm over them: a `step` at 2.80 m. The inner
+    // strip's cell there lies past its horizon, so it could not vouch for the ramp's
+    // surface; as a bound from below it does, at the end whose wheel stands higher.
+    let c = qvga(
+        mounted(
+            [0.032_658_138, 0.004_307_197, 0.917_794_577],
+            [6.435_207_990, 24.258_144_052, -8.115_052_579],
+        ),
+        0.311_715_711,
+    );
+    let band = |from_m, to_m, side_m| Extent::Bevelled {
+        from_m,
+        to_m,
+        side_m,
+    };
+    let (toe, g) = (1.012_471_510, 22.870_884_064);
+    let right = Element::ramp(toe, -0.45, g, 0.0, band(-0.7, -0.2, 0.115_026_450));
+    let left = Element::ramp(
+        1.386_893_681,
+        0.45,
+        15.487_494_295,
+        0.0,
+        band(0.2, 0.7, 0.119_200_459),
+    );
+    let [clean, noisy] = analyse_views(vec![right, left], &c, [None, Some(11_112_085)]);
+    assert_go(&clean, 5, toe, g, None);
+    assert_noisy_go(&noisy, 5, toe, g);
+}
+
+#[test]
 fn ground_falling_away_beside_a_track_over_a_sloping_edge_is_go_and_a_drop_beyond_stops() {
     // Ground falling away beyond a track's inner edge, the edge drawn sloping over
     // 10-13 cm (`Extent::Bevelled`): the belly band's edge strip holds the slope's
