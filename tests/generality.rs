@@ -5089,3 +5089,66 @@ fn a_post_narrower_than_a_cell_in_a_track_stops_and_a_low_one_goes() {
         }
     }
 }
+
+#[test]
+fn a_boulder_up_a_ramp_that_rises_out_of_view_is_climbed_with_it() {
+    // A 17.3° ramp across the corridor from 1.26 m, a 5.5 cm boulder (radius 8.3 cm)
+    // 0.2 m up it in the left track (`sweep -- natural 100 11202 random 10` #12), seen
+    // by a Kinect v1 0.62 m high pitched 37.3°: the view ends 0.44 m up the ramp, no
+    // wheelbase of it is seen, and the climb from the toe to the boulder's top, 31°,
+    // was a `slope`. The ramp's line to the view's end, the boulder left out, is
+    // 19-20° with its error.
+    let mut c = mounted(
+        [0.135_055_658, 0.058_742_451, 0.615_883_720],
+        [-3.737_128_215, 37.264_865_562, -0.317_226_237],
+    );
+    c.camera.min_range_m = 0.484_592_746;
+    let (toe, g) = (1.264_663_614, 17.285_440_166);
+    let ramp = Element::ramp(toe, 0.0, g, 0.0, Extent::Full);
+    let boulder = Element::stone(
+        1.470_692,
+        0.451_480,
+        0.083_109,
+        0.055_406,
+        StoneShape::Boulder,
+    );
+    let [clean, noisy] = analyse_views(vec![ramp, boulder], &c, [None, Some(11_202_012)]);
+    assert_go(&clean, 2, toe, g, None);
+    assert_noisy_go(&noisy, 2, toe, g);
+}
+
+#[test]
+fn a_steep_diagonal_ramp_rising_out_of_view_stops_on_the_side_it_meets_last() {
+    // A 38.1° ramp across the corridor, its toe line at 40.6° to the axle (the right
+    // track meets it at 2.68 m, 0.25 m before its view ends; along the strips it
+    // climbs 30.6°), seen by a 320×240 camera 0.94 m high (`sweep -- edges 100 10605
+    // random` #95, clean). The right track's ramp is seen for less than the 0.4 m the
+    // view's-end test asks of a ramp's line, so its hinge lies on the flat before the
+    // toe; leaving cells out of those lines as a stone's let the flat cells by that
+    // hinge go, and the lines climbed 27°: the right track's `slope` went.
+    let c = qvga(
+        mounted(
+            [0.120_895_611, -0.008_163_048, 0.939_304_197],
+            [2.884_526_415, 35.826_933_513, -7.871_589_452],
+        ),
+        0.321_023_261,
+    );
+    let ramp = Element::ramp(
+        2.175_408_732,
+        0.0,
+        38.081_557_638,
+        40.554_054_385,
+        Extent::Full,
+    );
+    let v = analyse(vec![ramp], &c);
+    assert_eq!(v.decision, Decision::Stop, "{:?}", v.hazards);
+    for side in [Side::Left, Side::Right] {
+        assert!(
+            v.hazards
+                .iter()
+                .any(|h| h.side == side && h.kind == HazardKind::Slope),
+            "no slope on the {side:?}: {:?}",
+            v.hazards
+        );
+    }
+}
