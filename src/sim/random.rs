@@ -323,6 +323,19 @@ fn seen_whole(
     post: &Element,
     base: impl Fn(f64, f64) -> f64,
 ) -> bool {
+    corners(post).is_some_and(|(corners, height_m)| {
+        corners.into_iter().all(|(x, y)| {
+            let z = base(x, y);
+            [z, z + height_m]
+                .into_iter()
+                .all(|z| in_view(p, config, Vector3::new(x, y, z), 0.05))
+        })
+    })
+}
+
+/// The corners (x, y) of block `post`'s footprint and its height, metres; `None` for
+/// any other element.
+fn corners(post: &Element) -> Option<([(f64, f64); 4], f64)> {
     let &Element::Block {
         x_m,
         y_m,
@@ -331,18 +344,10 @@ fn seen_whole(
         height_m,
     } = post
     else {
-        return false;
+        return None;
     };
-    [x_m, x_m + length_m].into_iter().all(|x| {
-        [y_m - width_m / 2.0, y_m + width_m / 2.0]
-            .into_iter()
-            .all(|y| {
-                let z = base(x, y);
-                [z, z + height_m]
-                    .into_iter()
-                    .all(|z| in_view(p, config, Vector3::new(x, y, z), 0.05))
-            })
-    })
+    let (x1, y0, y1) = (x_m + length_m, y_m - width_m / 2.0, y_m + width_m / 2.0);
+    Some(([(x_m, y0), (x_m, y1), (x1, y0), (x1, y1)], height_m))
 }
 
 /// How many posts [`post_scene_within`] draws on one ground before it draws the ground
@@ -429,25 +434,14 @@ mod tests {
             let [ground @ .., post] = terrain.elements.as_slice() else {
                 panic!("a scene holds a post");
             };
-            let &Element::Block {
-                x_m,
-                y_m,
-                length_m,
-                width_m,
-                height_m,
-            } = post
-            else {
-                panic!("the post is a block: {post:?}");
-            };
-            let base = Terrain::new(ground.to_vec()).height(x_m, y_m);
+            let (corners, height_m) = corners(post).expect("the post is a block");
+            let base = Terrain::new(ground.to_vec());
             let c = &rig.config;
             let p = Projector::new(c, c.camera.width as usize, c.camera.height as usize);
-            for cx in [x_m, x_m + length_m] {
-                for cy in [y_m - width_m / 2.0, y_m + width_m / 2.0] {
-                    for z in [base, base + height_m] {
-                        let at = Vector3::new(cx, cy, z);
-                        assert!(in_view(&p, c, at, 0.0), "{at:?} of {terrain:?} on {c:?}");
-                    }
+            for (x, y) in corners {
+                let z = base.height(x, y);
+                for at in [Vector3::new(x, y, z), Vector3::new(x, y, z + height_m)] {
+                    assert!(in_view(&p, c, at, 0.0), "{at:?} of {terrain:?} on {c:?}");
                 }
             }
         }

@@ -651,19 +651,25 @@ mod tests {
 
     const VS: f32 = 0.05;
 
+    /// A cell of row `ix`, `x` metres out, seen whole at height `z` (its mean, peak,
+    /// highest point and wheel alike).
+    fn level(ix: usize, x: f32, z: f32) -> StripCell {
+        StripCell {
+            x,
+            z,
+            ix,
+            past: false,
+            peak: z,
+            high: z,
+            wheel: z,
+        }
+    }
+
     /// A strip of seen cells 5 cm apart at heights `z`.
     fn strip(z: &[f32]) -> Vec<StripCell> {
         z.iter()
             .enumerate()
-            .map(|(i, &z)| StripCell {
-                x: 1.0 + 0.05 * i as f32,
-                z,
-                ix: 20 + i,
-                past: false,
-                peak: z,
-                high: z,
-                wheel: z,
-            })
+            .map(|(i, &z)| level(20 + i, 1.0 + 0.05 * i as f32, z))
             .collect()
     }
 
@@ -686,15 +692,7 @@ mod tests {
         let mut run: Vec<StripCell> = (0..10)
             .map(|i| (i, 0.0))
             .chain((10 + hole..30).map(|i| (i, fall)))
-            .map(|(i, z)| StripCell {
-                x: 1.0 + 0.05 * i as f32,
-                z,
-                ix: 20 + i,
-                past: false,
-                peak: z,
-                high: z,
-                wheel: z,
-            })
+            .map(|(i, z)| level(20 + i, 1.0 + 0.05 * i as f32, z))
             .collect();
         wheel_heights(&mut run, 0.11);
         let mut v = Verdict::default();
@@ -825,13 +823,8 @@ mod tests {
             .map(|(i, &(x, z))| {
                 let z = z + extra * (x - 1.2).max(0.0);
                 StripCell {
-                    x,
-                    z,
-                    ix: 18 + i,
                     past: i + 1 == n,
-                    peak: z,
-                    high: z,
-                    wheel: z,
+                    ..level(18 + i, x, z)
                 }
             })
             .collect();
@@ -881,16 +874,7 @@ mod tests {
             .map(|&(x, z)| {
                 let on_boulder = (1.38..1.52).contains(&x);
                 let z = z + extra * (x - 1.277).max(0.0) + if on_boulder { bump } else { 0.0 };
-                let ix = 20 + ((x - 1.0) / 0.05) as usize;
-                StripCell {
-                    x,
-                    z,
-                    ix,
-                    past: false,
-                    peak: z,
-                    high: z,
-                    wheel: z,
-                }
+                level(20 + ((x - 1.0) / 0.05) as usize, x, z)
             })
             .collect();
         wheel_heights(&mut run, 0.11);
@@ -1012,15 +996,7 @@ mod tests {
         ];
         let mut run: Vec<StripCell> = cells
             .iter()
-            .map(|&(x, z)| StripCell {
-                x,
-                z: k * z,
-                ix: (x / VS) as usize,
-                past: false,
-                peak: k * z,
-                high: k * z,
-                wheel: k * z,
-            })
+            .map(|&(x, z)| level((x / VS) as usize, x, k * z))
             .collect();
         if sharp {
             (run[10].z, run[10].peak) = (k * 0.149, k * 0.126);
@@ -1233,18 +1209,7 @@ mod tests {
             (42, 2.124, 0.300),
             (43, 2.174, 0.314),
         ];
-        let mut run: Vec<StripCell> = cells
-            .iter()
-            .map(|&(ix, x, z)| StripCell {
-                x,
-                z,
-                ix,
-                past: false,
-                peak: z,
-                high: z,
-                wheel: z,
-            })
-            .collect();
+        let mut run: Vec<StripCell> = cells.iter().map(|&(ix, x, z)| level(ix, x, z)).collect();
         (run[13].z, run[13].high) = (0.197 + lift, 0.197 + lift);
         wheel_heights(&mut run, 0.11);
         run
