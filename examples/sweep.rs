@@ -21,8 +21,9 @@
 //! where any verdict but go passes (a ditch whose floor the camera cannot see is
 //! unknown ground); `-- posts N SEED`, a post 3-8 cm square and 16-50 cm high in a
 //! track, on flat or rough ground or up a one-track ramp, on random rigs that see it
-//! whole (its base and its top), where likewise any verdict but go passes; `-- oblique N SEED`, climbable ramps up and
-//! down whose toe line runs at 20-60° to the axle, on random rigs, judged go or not,
+//! whole (its base and its top), where likewise any verdict but go passes;
+//! `-- oblique N SEED`, climbable ramps up and down whose toe line runs at 20-60° to
+//! the axle, on random rigs, judged go or not,
 //! except where the camera meets the surface in the tracks at under `GRAZING_DEG` (a
 //! descent as steep as the line of sight to it is not seen there): any verdict
 //! passes, and the last lines count those frames; `families`, `natural`, `bevelled`,
