@@ -386,46 +386,81 @@ fn view_end_slope(
 /// left out, the lines of a 38° ramp seen for 0.25 m climbed 27° (`sweep -- edges
 /// 100 10605 random` #95).
 fn hinge_under_stones(window: &[StripCell], hinge: f32, r: f32) -> Option<(f64, f32)> {
-    let n = window.len();
+    let after = |c: &StripCell| (c.x - hinge).max(0.0);
+    // A stone stands on the ramp: a cell kept lies past the hinge before it.
+    let on_ramp = |k: usize, out: u64| (0..k).any(|m| out & (1 << m) == 0 && window[m].x > hinge);
+    let (p, rms, out) = fit_under_stones(window, |c| (c.x, after(c)), on_ramp)?;
+    let on = |c: &StripCell| p.z(f64::from(c.x), f64::from(after(c))) as f32;
+    if window
+        .iter()
+        .any(|c| stone_height(c.wheel, c.high, on(c)) >= r)
+    {
+        return None;
+    }
+    // The ramp line's slope, raised by twice its standard error: the line must be
+    // climbable with confidence, not by the luck of the bumps.
+    let ramp = || {
+        kept(window, out)
+            .map(|c| f64::from(c.x))
+            .filter(|&x| x >= f64::from(hinge))
+    };
+    let (k, sum) = ramp().fold((0.0, 0.0), |(k, s), x| (k + 1.0, s + x));
+    let spread: f64 = ramp().map(|x| (x - sum / k).powi(2)).sum();
+    let m = (window.len() - out.count_ones() as usize) as f64;
+    let sigma = rms * (m / (m - 3.0).max(1.0)).sqrt();
+    let slope = (p.a + p.b).abs() + 2.0 * sigma / spread.sqrt();
+    Some((rms, slope as f32))
+}
+
+/// The cells of `cells` whose bit in `out` is clear.
+fn kept(cells: &[StripCell], out: u64) -> impl Iterator<Item = &StripCell> + Clone {
+    cells
+        .iter()
+        .enumerate()
+        .filter(move |(k, _)| out & (1 << k) == 0)
+        .map(|(_, c)| c)
+}
+
+/// The plane `z = a·x + b·y + c` through the wheel heights of `cells` at `at(cell)` =
+/// (x, y), once stones are left out: while the fit's RMS is over rough ground's
+/// spread ([`ROUGH_LINE_RMS_M`]), the cell standing highest above it is left out and
+/// the plane refitted. A cell may be left out only if it stands above the fit, is
+/// not the last, leaves at most a third of `cells` out, and `may_leave_out(k, out)`
+/// allows it (`k` its index, `out` the mask of those already left out). Returns the
+/// plane, its RMS (metres) and the mask of the cells left out; `None` otherwise, or
+/// for over 64 cells. The caller judges the stones left out ([`line_under_stones`],
+/// [`hinge_under_stones`]).
+fn fit_under_stones(
+    cells: &[StripCell],
+    at: impl Fn(&StripCell) -> (f32, f32),
+    may_leave_out: impl Fn(usize, u64) -> bool,
+) -> Option<(Plane, f64, u64)> {
+    let n = cells.len();
     if n > 64 {
         return None;
     }
-    let after = |c: &StripCell| (c.x - hinge).max(0.0);
     let mut out = 0u64;
     loop {
-        let kept = window
+        let points = kept(cells, out).map(|c| {
+            let (x, y) = at(c);
+            (x, y, c.wheel)
+        });
+        let (p, rms, _) = plane_fit(points)?;
+        if rms <= f64::from(ROUGH_LINE_RMS_M) {
+            return Some((p, rms, out));
+        }
+        let off = |c: &StripCell| {
+            let (x, y) = at(c);
+            c.wheel - p.z(f64::from(x), f64::from(y)) as f32
+        };
+        let (k, above) = cells
             .iter()
             .enumerate()
-            .filter(move |(k, _)| out & (1 << k) == 0);
-        let (p, rms, m) = plane_fit(kept.clone().map(|(_, c)| (c.x, after(c), c.wheel)))?;
-        let on = |c: &StripCell| p.z(f64::from(c.x), f64::from(after(c))) as f32;
-        if rms <= f64::from(ROUGH_LINE_RMS_M) {
-            if window
-                .iter()
-                .any(|c| stone_height(c.wheel, c.high, on(c)) >= r)
-            {
-                return None;
-            }
-            // The ramp line's slope, raised by twice its standard error: the line
-            // must be climbable with confidence, not by the luck of the bumps.
-            let ramp = || {
-                kept.clone()
-                    .map(|(_, c)| f64::from(c.x))
-                    .filter(|&x| x >= f64::from(hinge))
-            };
-            let (k, sum) = ramp().fold((0.0, 0.0), |(k, s), x| (k + 1.0, s + x));
-            let spread: f64 = ramp().map(|x| (x - sum / k).powi(2)).sum();
-            let sigma = rms * (m as f64 / (m as f64 - 3.0).max(1.0)).sqrt();
-            let slope = (p.a + p.b).abs() + 2.0 * sigma / spread.sqrt();
-            return Some((rms, slope as f32));
-        }
-        let (k, above) = kept
-            .map(|(k, c)| (k, c.wheel - on(c)))
+            .filter(|(k, _)| out & (1 << k) == 0)
+            .map(|(k, c)| (k, off(c)))
             .max_by(|a, b| a.1.total_cmp(&b.1))?;
         let dropped = out.count_ones() as usize + 1;
-        // A stone stands on the ramp: a cell kept lies past the hinge before it.
-        let on_ramp = (0..k).any(|m| out & (1 << m) == 0 && window[m].x > hinge);
-        if above <= 0.0 || !on_ramp || k == n - 1 || 3 * dropped > n {
+        if above <= 0.0 || k == n - 1 || 3 * dropped > n || !may_leave_out(k, out) {
             return None;
         }
         out |= 1 << k;
@@ -582,30 +617,8 @@ fn windows(
 /// climbs. Cells below the line are never left out: a bank's flat foot and its top
 /// are not one line with a stone. `None` otherwise, or for a window over 64 cells.
 fn line_under_stones(run: &[StripCell], r: f32) -> Option<f32> {
-    let n = run.len();
-    if n > 64 {
-        return None;
-    }
-    let off = |p: &Plane, c: &StripCell| c.wheel - p.z(f64::from(c.x), 0.0) as f32;
-    let mut out = 0u64;
-    loop {
-        let kept = run
-            .iter()
-            .enumerate()
-            .filter(move |(k, _)| out & (1 << k) == 0);
-        let (line, rms) = line_fit(kept.clone().map(|(_, c)| (c.x, c.wheel)))?;
-        if rms <= f64::from(ROUGH_LINE_RMS_M) {
-            return under_a_wheel(run, &line, r).then_some(line.a.abs() as f32);
-        }
-        let (k, above) = kept
-            .map(|(k, c)| (k, off(&line, c)))
-            .max_by(|a, b| a.1.total_cmp(&b.1))?;
-        let dropped = out.count_ones() as usize + 1;
-        if above <= 0.0 || k == 0 || k == n - 1 || 3 * dropped > n {
-            return None;
-        }
-        out |= 1 << k;
-    }
+    let (line, _, _) = fit_under_stones(run, |c| (c.x, 0.0), |k, _| k > 0)?;
+    under_a_wheel(run, &line, r).then_some(line.a.abs() as f32)
 }
 
 /// The least-squares slope |dz/dx| of a run's wheel heights when they lie on one line
