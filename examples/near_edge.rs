@@ -27,9 +27,18 @@
 //! slope limit (31.5-40°, must not be go). The last line counts the gos on steep
 //! ramps and the other verdicts on climbable ones; `ALL=1` prints every frame's drawn
 //! and measured gradient.
+//!
+//! `-- N SEED short` puts, on the same rigs, a ramp over the slope limit (30.5-40°,
+//! under one track or across the corridor, straight or diagonal, on smooth or rough
+//! ground) whose toe lies 0.05-0.45 m before the end of the view. A go is wrong only
+//! where the ramp rises at least 5 cm in a track before where the verdict says that
+//! track's view ends (`seen_to_m`: a go vouches for the ground up to there, no
+//! farther); the last line counts those gos and the gos on ramps that rise only past
+//! the view.
 
 use rand::{Rng, SeedableRng};
 use rover_terrain::sim::{self, families, Element, Extent, KinectNoise, Terrain};
+use rover_terrain::verdict::SeenTo;
 use rover_terrain::{Config, Decision, Pipeline};
 
 fn main() {
@@ -40,6 +49,7 @@ fn main() {
         Some("far") => Mode::Far,
         Some("passable") => Mode::Passable,
         Some("rough") => Mode::Rough,
+        Some("short") => Mode::Short,
         _ => Mode::Near,
     };
     let (far, passable, rough) = (
@@ -48,6 +58,7 @@ fn main() {
         mode == Mode::Rough,
     );
     let (mut steep_go, mut climbable_not_go, mut past_view) = (0, 0, 0);
+    let mut short_go_at_view_end = 0;
     let mut steep_frames = 0;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let (mut total, mut flagged) = (0, 0);
@@ -78,8 +89,16 @@ fn main() {
             // A go is wrong here, anything else on the passable control; on rough
             // ramps, a go on a steep one or anything else on a climbable one.
             let go = v.decision == Decision::Go;
+            // A go on a short steep ramp is wrong only where the verdict vouches for
+            // some of its rise: it rises in a track before where that track's view
+            // ends (`seen_to_m`), the contract of a go.
+            let rise = (mode == Mode::Short).then(|| rise_seen(&terrain, &config, &v.seen_to_m));
             let wrong = if rough {
                 go == steep
+            } else if let Some(rise) = rise {
+                let vouched = rise >= SHORT_RISE_M;
+                short_go_at_view_end += usize::from(go && !vouched);
+                go && vouched
             } else {
                 go != passable && !unseen
             };
@@ -96,6 +115,9 @@ fn main() {
                 steep_go += 1;
             } else if rough {
                 climbable_not_go += 1;
+            }
+            if let Some(rise) = rise {
+                print!("risen {rise:.3} m where the view ends: ");
             }
             println!(
                 "{} #{i} noisy={noisy} near={near:.3} end={end:.3} {:?} mount={:?} cam={}x{} feature={:?} hazards={:?}",
@@ -121,6 +143,10 @@ fn main() {
         println!(
             "{total} frames ({steep_frames} steep), {steep_go} go on a steep rough ramp, {climbable_not_go} not go on a climbable one"
         );
+    } else if mode == Mode::Short {
+        println!(
+            "{total} frames, {flagged} go on a steep ramp risen {SHORT_RISE_M} m or more where the view ends, {short_go_at_view_end} go on one that rises only past it"
+        );
     } else {
         let counted = if passable { "not go" } else { "go" };
         println!("{total} frames, {flagged} {counted}");
@@ -143,6 +169,30 @@ enum Mode {
     Passable,
     /// A climbable or steep ramp on rough ground, toe 0.3-0.7 m before the view ends.
     Rough,
+    /// A ramp over the slope limit, smooth or rough, straight or diagonal, toe
+    /// 0.05-0.45 m before the view ends.
+    Short,
+}
+
+/// How high a `Short` ramp must rise in a track before where that track's view ends
+/// for a go to be wrong, metres: a rise of this much is seen (a face of at least a
+/// cell and a half at 31°).
+const SHORT_RISE_M: f64 = 0.05;
+
+/// How high the ramp of a `Short` scene (its last element, without the rough ground
+/// under it) stands, metres, at the farthest point of either wheel track the verdict
+/// says is seen (`seen_to`, per track; at eleven points across the track).
+fn rise_seen(terrain: &Terrain, config: &Config, seen_to: &SeenTo) -> f64 {
+    let (inner, outer) = (config.rover.belly_half_width_m, config.rover.track_outer_m);
+    let ramp = Terrain::new(terrain.elements.last().into_iter().cloned().collect());
+    let field = ramp.field();
+    let track = |to: f32, side: f64| {
+        (0..=10)
+            .map(|k| f64::from(k) / 10.0)
+            .map(|t| field.height(f64::from(to), side * (inner + t * (outer - inner))))
+            .fold(f64::MIN, f64::max)
+    };
+    track(seen_to.left, 1.0).max(track(seen_to.right, -1.0))
 }
 
 /// One drawn scene: its terrain, whether its ramp is over the slope limit (`Rough`),
@@ -168,6 +218,33 @@ fn scene(
         return Some(Scene {
             terrain,
             steep,
+            unseen: false,
+        });
+    }
+    if mode == Mode::Short {
+        if !families::view_ends_in_corridor(end, config) {
+            return None;
+        }
+        let toe = rng.gen_range(end - 0.45..end - 0.05);
+        let gradient = rng.gen_range(30.5..40.0);
+        let alpha = if rng.gen_bool(0.5) {
+            0.0
+        } else {
+            rng.gen_range(-30.0..30.0)
+        };
+        let extent = [Extent::Left, Extent::Right, Extent::Full][rng.gen_range(0..3)];
+        let mut elements = Vec::new();
+        if rng.gen_bool(0.5) {
+            elements.push(Element::Rough {
+                amplitude_m: 0.025,
+                correlation_m: rng.gen_range(0.1..0.2),
+                seed: rng.gen(),
+            });
+        }
+        elements.push(Element::ramp(toe, 0.0, gradient, alpha, extent));
+        return Some(Scene {
+            terrain: Terrain::new(elements),
+            steep: false,
             unseen: false,
         });
     }
