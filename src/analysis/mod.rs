@@ -559,9 +559,11 @@ impl Analyzer {
 /// On rough ground a face the view ends on, seen briefly, reads several degrees off
 /// (a 32° ramp seen for 0.35 m past its toe read 27°), so the gradient judged is the
 /// measured one plus [`FACE_MARGIN_SDS`] times its uncertainty `sd_deg` (degrees, one
-/// standard deviation, from the ground's roughness and the run seen:
-/// `feature::analyse`). On smooth ground, or a face seen for a wheelbase, that adds a
-/// fraction of a degree.
+/// standard deviation, from the ground's roughness and the run seen, or the face's own
+/// cells' noise where that is larger: `feature::analyse`). A face seen for a wheelbase
+/// gains a fraction of a degree; one seen for its first 0.1-0.2 m, a few degrees, even
+/// on smooth ground (with a depth camera's noise such a glimpse of a 31° ramp read
+/// 27.5°).
 fn too_steep_face(
     measured: &Feature,
     sd_deg: f64,
