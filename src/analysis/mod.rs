@@ -574,7 +574,8 @@ fn too_steep_face(
         return false;
     };
     let steep = f64::from(gradient.abs()) + FACE_MARGIN_SDS * sd_deg;
-    if steep <= rover.max_slope_deg || steep >= 90.0 - 1e-3 {
+    // A step's ±90° is no plane; a plane just short of it is, however uncertain.
+    if steep <= rover.max_slope_deg || f64::from(gradient.abs()) >= 90.0 - 1e-3 {
         return false;
     }
     let at = (distance_m, [None; 2]);
@@ -704,6 +705,34 @@ fn decide(verdict: &mut Verdict, too_little: bool, nearest_unseen: f32) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_steep_plane_is_a_slope_however_uncertain_and_a_step_is_no_plane() {
+        let rover = RoverConfig::default();
+        let face = |gradient: f32| Feature {
+            workcase: 2,
+            distance_m: Some(2.0),
+            gradient_deg: Some(gradient),
+            alpha_deg: None,
+            toe_seen: true,
+        };
+        let slopes = |gradient: f32, sd_deg: f64| {
+            let mut v = Verdict::default();
+            let found = too_steep_face(&face(gradient), sd_deg, &rover, &mut v);
+            assert_eq!(found, !v.hazards.is_empty());
+            v.hazards.iter().all(|h| h.kind == HazardKind::Slope) && found
+        };
+        // A 28° face with 1.5° of uncertainty is judged 31°: a slope; with 0.9°,
+        // 29.8°: none.
+        assert!(slopes(28.0, 1.5));
+        assert!(!slopes(28.0, 0.9));
+        // An 86° plane seen in one row of cells has a large uncertainty from its own
+        // noise, which takes it past 90°: still a plane, and a slope (it was none).
+        assert!(slopes(86.0, 5.0));
+        // A step measured from its onsets is ±90°, no plane: the step test's.
+        assert!(!slopes(90.0, 0.0));
+        assert!(!slopes(-90.0, 3.0));
+    }
 
     #[test]
     fn each_region_s_strips_are_one_run_the_filter_finds() {
