@@ -121,8 +121,8 @@ impl Face {
         let (mut to_view_end, mut shadow, mut horizon) = (false, false, false);
         for (c, cell) in sel.taken(f) {
             let on_plane = plane.z(f64::from(cell.x), f64::from(cell.y));
-            run_m = run_m.max(on_plane.abs() / slope);
             let u = on_plane / slope;
+            run_m = run_m.max(u.abs());
             along = (along.0 + 1.0, along.1 + u, along.2 + u * u);
             spread.add(f64::from(g.z[c]) - on_plane);
             let (ix, iy) = (c / s.ny, c % s.ny);

@@ -475,9 +475,10 @@ fn continued(last: [Option<(f32, f32)>; 2], x: f32, tan_max: f32) -> Option<f32>
 /// wheel stands higher, where a reading past it is a bound from below and serves)
 /// and changes between them by at most a wheel radius `r` and less steeply than the
 /// limit `tan_max`; and the higher end stands at most rough ground's spread
-/// ([`ROUGH_SPREAD_M`]) over the inner strip's surface there, its wheel ([`wheel_heights`]) as much over the inner strip's wheel
-/// ([`wheel_on`]). The track, half a metre wide, rests on that surface; the edge
-/// strip's lower reading is the face's points.
+/// ([`ROUGH_SPREAD_M`]) over the inner strip's surface there, its wheel
+/// ([`wheel_heights`]) as much over the inner strip's wheel ([`wheel_on`]). The
+/// track, half a metre wide, rests on that surface; the edge strip's lower reading is
+/// the face's points.
 ///
 /// A one-track ramp's side, 4.4 cm wide and 0.5 m high 2.7 m out, seen by a 320×240
 /// camera: the edge strip read it as a surface sloping across, its mean 6-13 cm under
