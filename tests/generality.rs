@@ -5213,3 +5213,45 @@ fn a_ramp_just_over_the_limit_seen_briefly_where_the_view_ends_is_no_go_through_
         }
     }
 }
+
+#[test]
+fn a_rough_descent_s_level_bump_past_a_gap_is_no_tall_stone_s_back_but_a_drop_there_stops() {
+    // A 320×240 camera 0.84 m high, pitched 21.7°, over a 13.9° descent from 1.65 m
+    // with a 0.14 m rounded toe on rough ground (`sweep -- rounded 100 11415 random`
+    // #71, clean and noisy). One strip of the right track lies unseen 2.3-2.55 m out,
+    // and the four cells past it lie level on a bump's top: carried back over the gap
+    // at their own slope (1.8°), that line stood a wheel radius under the descent seen
+    // before the gap, which read as a fall off a tall stone's back: a `drop_off`. The
+    // ground before the gap descends on one line with no stone among it: the ground
+    // the gap hides falls at least as steeply.
+    let c = qvga(
+        mounted(
+            [0.035_510_011, 0.069_238_219, 0.839_039_384],
+            [-0.784_600_826, 21.709_136_715, -5.661_288_425],
+        ),
+        0.311_095_408,
+    );
+    let descent = vec![
+        rough(0.106_490_959, 3_084_073_265_159_526_135),
+        Element::ramp(1.650_129_256, 0.0, -13.940_113_382, 0.0, Extent::Full)
+            .toe_rounded(Some(0.135_781_717)),
+    ];
+    for v in analyse_views(descent.clone(), &c, [None, Some(11_415_071)]) {
+        assert_rough_go(&v, 8, 1.650_129_256, -13.940_113_382);
+    }
+    // The ground ending in a drop there instead still stops.
+    for edge in [2.3, 2.5] {
+        let mut scene = descent.clone();
+        scene.push(Element::DropOff {
+            x_m: edge,
+            depth_m: 0.5,
+        });
+        for v in analyse_views(scene, &c, [None, Some(11_415_071)]) {
+            assert!(
+                v.hazards.iter().any(|h| h.kind == HazardKind::DropOff),
+                "edge at {edge}: {:?}",
+                v.hazards
+            );
+        }
+    }
+}

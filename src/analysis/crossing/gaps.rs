@@ -233,21 +233,43 @@ fn line_past(
     }))
 }
 
-/// The ground past a gap or a shadow (`landing`, [`line_past`]) as a climbable line
-/// (over [`LANDING_MIN_CELLS`] or more, within rough ground's spread, under the slope
-/// limit `tan_max`), and how far the cells seen in the last [`STONE_BEFORE_M`]
-/// before it stand over it, carried back, metres: the most of their
-/// [`stone_height`]s over it, less the line's own spread (rough ground's, in the
-/// stone's favour).
-fn stands_over(before: &Recent, landing: LinePast, tan_max: f32) -> Option<(Plane, f32)> {
+/// The ground past a gap or a shadow (`landing`, [`line_past`], starting at `x0`,
+/// metres) as a climbable line (over [`LANDING_MIN_CELLS`] or more, within rough
+/// ground's spread, under the slope limit `tan_max`), and how far the cells seen in
+/// the last [`STONE_BEFORE_M`] before it stand over it, carried back, metres: the
+/// most of their [`stone_height`]s over it, less the line's own spread (rough
+/// ground's, in the stone's favour).
+///
+/// Where the ground before the gap descends on one line within rough ground's spread
+/// ([`Recent::line`]: no stone among its cells) more steeply than the landing, the
+/// landing is carried back from `x0` at that descent instead: the ground the gap hides
+/// falls at least as the ground on both sides of it. A few cells of rough ground past
+/// a gap may lie level on a bump's top; carried back over the gap at their own slope,
+/// they stood a wheel radius under the descent before it (a 13.9° rough descent, four
+/// cells 2.6-2.7 m out read 1.8°, the gap 0.3 m long): a `drop_off`
+/// (`sweep -- rounded 100 11415 random` #71, clean and noisy).
+fn stands_over(
+    before: &Recent,
+    (landing, x0): (LinePast, f32),
+    tan_max: f32,
+) -> Option<(Plane, f32)> {
     let (line, rms, n) = landing;
     if n < LANDING_MIN_CELLS || rms > f64::from(ROUGH_LINE_RMS_M) || line.a.abs() as f32 >= tan_max
     {
         return None;
     }
+    let z0 = line.z(f64::from(x0), 0.0) as f32;
+    let descent = before
+        .line()
+        .filter(|&(k, spread, _)| spread <= ROUGH_LINE_RMS_M && f64::from(k) < line.a)
+        .map(|(k, _, _)| k);
+    let carried = |x: f32| match descent {
+        Some(k) => z0 + k * (x - x0),
+        None => line.z(f64::from(x), 0.0) as f32,
+    };
     let over = before
         .within(STONE_BEFORE_M)
-        .map(|(x, z, top)| stone_height(z, top, line.z(f64::from(x), 0.0) as f32))
+        .map(|(x, z, top)| stone_height(z, top, carried(x)))
         .fold(f32::NEG_INFINITY, f32::max);
     Some((line, over - rms as f32))
 }
@@ -282,8 +304,9 @@ fn fall_behind(
     let Some((_, zb)) = before.last() else {
         return false;
     };
+    let x0 = f.spec.x_centre(end);
     let landing = line_past(f, iy, end, ground, LANDING_M, true)
-        .and_then(|l| stands_over(before, l, tan_max));
+        .and_then(|l| stands_over(before, (l, x0), tan_max));
     tall_back(zb, za, landing, r)
 }
 
@@ -591,7 +614,7 @@ fn judge_gap(
     };
     let landing = after
         .and_then(|(_, landing)| landing)
-        .and_then(|l| stands_over(&before, l, tan_max));
+        .and_then(|l| stands_over(&before, (l, s.x_centre(end)), tan_max));
     let after = after.map(|(at, _)| at);
     match after {
         None => {
