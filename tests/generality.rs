@@ -5255,3 +5255,34 @@ fn a_rough_descent_s_level_bump_past_a_gap_is_no_tall_stone_s_back_but_a_drop_th
         }
     }
 }
+
+#[test]
+fn one_rough_descent_read_per_track_within_rough_ground_s_spread_is_one_face() {
+    // A D435-like camera 0.81 m high, rolled -6.3°, pitched 27.4° and yawed -7.6°, over
+    // an 11.9° descent across the corridor from 0.80 m on rough ground (`sweep --
+    // families 100 11401 random` #38, clean). Fitted per track, its cells lie 6 mm about
+    // each plane, 12.5° and 10.3° with toes 1 cm apart; the joint plane leaves F 500,
+    // over the 480 that counted each 20 cm patch as one cell: two faces, and the left
+    // track's alone (workcase 9). Rough ground's residuals move together over its
+    // correlation area, about π·L².
+    let c = d435_like(
+        mounted(
+            [0.037_053_826, -0.001_507_955, 0.806_596_416],
+            [-6.314_147_393, 27.409_071_827, -7.588_660_788],
+        ),
+        [
+            425.730_721_563,
+            423.905_425_506,
+            405.471_733_710,
+            248.921_864_549,
+        ],
+        0.361_617_111,
+    );
+    let descent = vec![
+        rough(0.164_216_129, 13_435_398_499_891_628_236),
+        Element::ramp(0.804_616_971, 0.0, -11.926_009_837, 0.0, Extent::Full),
+    ];
+    for v in analyse_views(descent, &c, [None, Some(11_401_038)]) {
+        assert_rough_go(&v, 8, 0.804_616_971, -11.926_009_837);
+    }
+}

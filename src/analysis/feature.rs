@@ -639,19 +639,42 @@ fn residuals(f: &Frame, g: &Ground, sel: &Selection, p: &Plane) -> (f64, usize) 
 /// them about as well as a plane per track does. `own` is the two one-track fits'
 /// summed squared residuals, `joint` the joint plane's over the same cells, `n` the
 /// cells: an F ratio of the three parameters the second plane adds against the
-/// per-cell variance left, under [`SAME_FACE_F`]. Two ramps with toes 0.3 m apart
-/// leave centimetres on every cell (F in the thousands); one face on rough ground
-/// leaves F in the tens to hundreds, its residuals correlated over many cells.
+/// per-cell variance left, under [`SAME_FACE_F`] times the cells whose residuals move
+/// together. Two ramps with toes 0.3 m apart on smooth ground leave centimetres on
+/// every cell (F of 1,000 and more); one face on rough ground leaves F in the tens to
+/// hundreds, its residuals correlated over many cells.
+///
+/// How many cells move together depends on what the variance left is: depth noise
+/// (up to [`FACE_NOISE_M`], the floor) counts [`NOISE_CORRELATED_CELLS`]; the share
+/// past it is rough ground's, whose residuals move together over its correlation
+/// area ([`ROUGH_CORRELATED_CELLS`]). With 16 cells for both, one 11.9° rough
+/// descent fitted per track read 12.5° and 10.3° with toes 1 cm apart, its cells
+/// 6 mm about each plane, F 500: two faces, the left track's alone (workcase 9 for
+/// 8: `sweep -- families 100 11401 random` #38, clean). Of 350 rough ramps and
+/// descents (`sweep -- families 200 11450 random 5` and `11451`) 4 read F 480-777,
+/// their cells 6-11 mm about the planes; of 462 frames of two smooth ramps under the
+/// tracks (`... 9`), none read under 994, their cells within 1.3 mm.
 fn same_face(own: f64, joint: f64, n: usize) -> bool {
-    let variance = (own / n.saturating_sub(6).max(1) as f64).max(FACE_NOISE_M * FACE_NOISE_M);
-    (joint - own).max(0.0) / 3.0 / variance <= SAME_FACE_F
+    let floor = FACE_NOISE_M * FACE_NOISE_M;
+    let variance = (own / n.saturating_sub(6).max(1) as f64).max(floor);
+    let rough_share = 1.0 - floor / variance;
+    let cells =
+        NOISE_CORRELATED_CELLS + (ROUGH_CORRELATED_CELLS - NOISE_CORRELATED_CELLS) * rough_share;
+    (joint - own).max(0.0) / 3.0 / variance <= SAME_FACE_F * cells
 }
 
-/// The F ratio above which two one-track faces are different faces: 30 for
-/// independent cells, times the 16 cells a rough-ground correlation area spans
-/// (20 cm correlation length over 5 cm cells, squared), whose residuals move
-/// together and so count as one.
-const SAME_FACE_F: f64 = 30.0 * 16.0;
+/// The F ratio above which two one-track faces are different faces, for
+/// independent cells; [`same_face`] multiplies it by the cells whose residuals move
+/// together.
+const SAME_FACE_F: f64 = 30.0;
+/// The cells counted as one where a face's cells spread about it by depth noise alone:
+/// the 16 of a 20 cm patch (the limit measured before rough ground's share counted).
+const NOISE_CORRELATED_CELLS: f64 = 16.0;
+/// The cells of rough ground's correlation area, counted as one where a face's cells
+/// spread about it by rough ground: a height field correlated over a length L moves
+/// together over about π·L², 50 cells of 5 cm at the 20 cm the rough ground of the
+/// issue reaches.
+const ROUGH_CORRELATED_CELLS: f64 = 50.0;
 /// Least per-cell height noise the F ratio assumes, metres (clean frames leave
 /// millimetres).
 const FACE_NOISE_M: f64 = 0.003;
@@ -1757,6 +1780,34 @@ mod tests {
         let floor = (0.03f64).to_degrees();
         assert!((noise_sd_deg(0.0, 0.0015, 0.0, 0.1) - floor).abs() < 1e-9);
         assert!((noise_sd_deg(0.0, 0.011, 0.011, 0.1) - floor).abs() < 1e-9);
+    }
+
+    #[test]
+    fn two_faces_are_told_against_noise_by_16_cells_and_rough_ground_by_up_to_50() {
+        // 406 cells, 6 left for the variance: own 400·v, the F ratio (joint − own)/3/v.
+        let (n, f) = (406, |v: f64, ratio: f64| {
+            (400.0 * v, 400.0 * v + 3.0 * v * ratio)
+        });
+        // Cells within the 3 mm floor: 30·16 = 480, as before rough ground counted;
+        // under it, the ratio is taken against the floor.
+        let floor = 0.003f64 * 0.003;
+        for own in [400.0 * floor, 200.0 * floor] {
+            assert!(same_face(own, own + 3.0 * floor * 479.0, n));
+            assert!(!same_face(own, own + 3.0 * floor * 481.0, n));
+        }
+        // 6 mm: three quarters of the variance rough ground's, 16 + 34·0.75 = 41.5
+        // cells, a limit of 1,245.
+        let v = 0.006f64 * 0.006;
+        let (own, joint) = f(v, 1244.0);
+        assert!(same_face(own, joint, n));
+        let (own, joint) = f(v, 1246.0);
+        assert!(!same_face(own, joint, n));
+        // Far rougher: the limit tends to 30·50.
+        let v = 0.1f64 * 0.1;
+        let (own, joint) = f(v, 1499.0);
+        assert!(same_face(own, joint, n));
+        let (own, joint) = f(v, 1500.0);
+        assert!(!same_face(own, joint, n));
     }
 
     #[test]
