@@ -5257,6 +5257,60 @@ fn a_rough_descent_s_level_bump_past_a_gap_is_no_tall_stone_s_back_but_a_drop_th
 }
 
 #[test]
+fn a_trench_s_outer_wall_read_over_its_floor_makes_no_fall_but_a_post_on_the_floor_stops() {
+    // 320×240 cameras over diagonal descents under the right track, the ground beyond
+    // the corridor left level, so a wall rises from the trench's floor along the
+    // corridor's edge (`sweep -- oblique 100 11403 random` #43: 13.6° met at 30.9°,
+    // and #82: 17.5° at 35.3°, noisy). The outermost strip reads the wall's points
+    // over the floor, 6-11 cm up, and then the floor where noise leaves fewer of them:
+    // a fall of 11.2-12.1 cm, a `step`, where the next strip inward reads the floor
+    // all along.
+    let rig_43 = qvga(
+        mounted(
+            [0.292_772_512, -0.012_977_200, 0.875_824_511],
+            [1.794_204_109, 35.022_221_723, -1.120_884_342],
+        ),
+        0.436_776_079,
+    );
+    let rig_82 = qvga(
+        mounted(
+            [0.018_215_343, -0.069_587_550, 0.798_425_373],
+            [-1.249_667_918, 15.706_189_904, 1.349_948_797],
+        ),
+        0.366_316_922,
+    );
+    let scenes = [
+        (
+            rig_43,
+            (1.535_688_132, -13.574_412_146, 30.919_958_468),
+            11_403_043,
+            [2.6, 2.8],
+        ),
+        (
+            rig_82,
+            (1.629_338_837, -17.524_381_245, 35.261_316_519),
+            11_403_082,
+            [2.3, 2.45],
+        ),
+    ];
+    for (c, (toe, g, alpha), seed, posts) in scenes {
+        let trench = || vec![Element::ramp(toe, -0.45, g, alpha, RIGHT_TRACK)];
+        for v in analyse_views(trench(), &c, [None, Some(seed)]) {
+            assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+            assert_eq!(v.feature.map(|f| f.workcase), Some(10));
+        }
+        // A post on the floor against the wall, where the strip falls, stops.
+        for x in posts {
+            let mut scene = trench();
+            scene.push(block_at(x, -0.68, 0.04, 0.03, 0.25));
+            for v in analyse_views(scene, &c, [None, Some(seed)]) {
+                assert_ne!(v.decision, Decision::Go, "post at {x}: {:?}", v.feature);
+            }
+        }
+    }
+}
+
+#[test]
 fn one_rough_descent_read_per_track_within_rough_ground_s_spread_is_one_face() {
     // A D435-like camera 0.81 m high, rolled -6.3°, pitched 27.4° and yawed -7.6°, over
     // an 11.9° descent across the corridor from 0.80 m on rough ground (`sweep --

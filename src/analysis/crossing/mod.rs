@@ -500,6 +500,16 @@ fn continued(last: [Option<(f32, f32)>; 2], x: f32, tan_max: f32) -> Option<f32>
 /// `step` (`sweep -- bevelled 100 11112 random 9` #85, clean, a 320×240 camera).
 /// The higher end is told by wheel, not by mean: one of those wheels, on a cell whose
 /// mean is the lower, rested on the cell past it.
+///
+/// In the outermost strip a fall also counts for nothing when it lands on the inner
+/// strip's surface or over it (within rough ground's spread under it, read past its
+/// horizon too) from a cell that the cell just before it reads within `r`: a descent
+/// under the track leaves a wall along the corridor's edge from its floor up to the
+/// ground beyond, and the strip read the wall's points over the floor, 6-11 cm up,
+/// then the floor where depth noise left fewer of them, a fall of 11.2-12.1 cm where
+/// the inner strip read the floor all along: a `step` (`sweep -- oblique 100 11403
+/// random` #43 and #82, noisy, 320×240 cameras). A stone's front stands over the
+/// ground before it and is judged as a rise.
 fn face_under_track(f: &Frame, iy: usize, ends: [&StripCell; 2], (r, tan_max): (f32, f32)) -> bool {
     let s = f.spec;
     let (inward, outer) = match edge_strip(f, iy) {
@@ -517,16 +527,29 @@ fn face_under_track(f: &Frame, iy: usize, ends: [&StripCell; 2], (r, tan_max): (
     };
     let [a, b] = ends;
     let b_high = b.wheel > a.wheel;
-    let (Some(za), Some(zb)) = (inner(a.ix, !b_high), inner(b.ix, b_high)) else {
+    // On the corridor's edge a fall's landing may lie past the inner strip's horizon:
+    // the surface read there is what the camera saw of it.
+    let (Some(za), Some(zb)) = (inner(a.ix, !b_high), inner(b.ix, b_high || outer)) else {
         return false;
     };
     let (high, z_inner) = if b.z > a.z { (b, zb) } else { (a, za) };
     let change = (zb - za).abs();
+    // On the corridor's edge, a fall that lands on the inner strip's surface or over
+    // it, from a reading that the cell just before it reads within a wheel radius:
+    // the points of a wall rising from the track's floor along its outer edge (a
+    // trench under the track), not a stone's back, whose front stands over the ground
+    // before it.
+    let along_wall = a.ix > 0 && {
+        let c = s.cell(a.ix - 1, iy);
+        f.seen[c] && f.cells[c].z >= a.z - r
+    };
+    let onto_surface = outer && !b_high && along_wall && b.z >= zb - ROUGH_SPREAD_M;
     (outer || spans(a.ix) || spans(b.ix))
         && change <= r
         && change < tan_max * (b.x - a.x).abs()
-        && high.z <= z_inner + ROUGH_SPREAD_M
-        && high.wheel <= wheel_on(f, inward, high, r) + ROUGH_SPREAD_M
+        && (onto_surface
+            || (high.z <= z_inner + ROUGH_SPREAD_M
+                && high.wheel <= wheel_on(f, inward, high, r) + ROUGH_SPREAD_M))
 }
 
 /// Where a wheel of radius `r` over strip `iy`, abreast of `cell` (another strip's),
