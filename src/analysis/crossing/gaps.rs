@@ -190,8 +190,7 @@ fn below_view(
     tan_max: f32,
 ) -> bool {
     let s = f.spec;
-    let x0 = s.x_centre(end);
-    let Some((line, rms, _)) = line_past(f, iy, end, ground, BLIND_FIT_M, false) else {
+    let Some((line, rms, _, x0)) = line_past(f, iy, end, ground, BLIND_FIT_M, false) else {
         return false;
     };
     let (k, z0) = (line.a as f32, line.z(f64::from(x0), 0.0) as f32);
@@ -211,8 +210,9 @@ fn below_view(
 /// The least-squares line z = a·x + c (as a plane, b = 0) through strip `iy`'s seen
 /// cells from row `end` on, up to `reach_m` metres past its centre (`whole`: seen
 /// whole, not past the horizon, up to the first that is not), at their heights
-/// `ground` gives (x, z), the RMS of their heights about it, metres, and how many
-/// they are; `None` with no two distinct x.
+/// `ground` gives (x, z), the RMS of their heights about it, metres, how many they
+/// are, and where it starts (row `end`'s centre, x, metres); `None` with no two
+/// distinct x.
 fn line_past(
     f: &Frame,
     iy: usize,
@@ -227,14 +227,15 @@ fn line_past(
         let c = s.cell(ix, iy);
         f.seen[c] && !(whole && f.past[c]) && s.x_centre(ix) <= x0 + reach_m
     });
-    plane_fit(cells.map(|ix| {
+    let (line, rms, n) = plane_fit(cells.map(|ix| {
         let (x, z) = ground(s.cell(ix, iy));
         (x, 0.0, z)
-    }))
+    }))?;
+    Some((line, rms, n, x0))
 }
 
-/// The ground past a gap or a shadow (`landing`, [`line_past`], starting at `x0`,
-/// metres) as a climbable line (over [`LANDING_MIN_CELLS`] or more, within rough
+/// The ground past a gap or a shadow (`landing`, [`line_past`], starting at its
+/// `x0`) as a climbable line (over [`LANDING_MIN_CELLS`] or more, within rough
 /// ground's spread, under the slope limit `tan_max`), and how far the cells seen in
 /// the last [`STONE_BEFORE_M`] before it stand over it, carried back, metres: the
 /// most of their [`stone_height`]s over it, less the line's own spread (rough
@@ -248,12 +249,8 @@ fn line_past(
 /// they stood a wheel radius under the descent before it (a 13.9° rough descent, four
 /// cells 2.6-2.7 m out read 1.8°, the gap 0.3 m long): a `drop_off`
 /// (`sweep -- rounded 100 11415 random` #71, clean and noisy).
-fn stands_over(
-    before: &Recent,
-    (landing, x0): (LinePast, f32),
-    tan_max: f32,
-) -> Option<(Plane, f32)> {
-    let (line, rms, n) = landing;
+fn stands_over(before: &Recent, landing: LinePast, tan_max: f32) -> Option<(Plane, f32)> {
+    let (line, rms, n, x0) = landing;
     if n < LANDING_MIN_CELLS || rms > f64::from(ROUGH_LINE_RMS_M) || line.a.abs() as f32 >= tan_max
     {
         return None;
@@ -304,15 +301,15 @@ fn fall_behind(
     let Some((_, zb)) = before.last() else {
         return false;
     };
-    let x0 = f.spec.x_centre(end);
     let landing = line_past(f, iy, end, ground, LANDING_M, true)
-        .and_then(|l| stands_over(before, (l, x0), tan_max));
+        .and_then(|l| stands_over(before, l, tan_max));
     tall_back(zb, za, landing, r)
 }
 
 /// A line through a strip's cells ([`line_past`]): the line (a plane, b = 0), the RMS
-/// of the cells' heights about it, metres, and how many they are.
-type LinePast = (Plane, f64, usize);
+/// of the cells' heights about it, metres, how many they are, and the x of the row it
+/// starts on, metres.
+type LinePast = (Plane, f64, usize, f32);
 
 /// How far past a gap [`judge_gap`] takes the ground it lands on as a line, metres.
 const LANDING_M: f32 = 0.3;
@@ -614,7 +611,7 @@ fn judge_gap(
     };
     let landing = after
         .and_then(|(_, landing)| landing)
-        .and_then(|l| stands_over(&before, (l, s.x_centre(end)), tan_max));
+        .and_then(|l| stands_over(&before, l, tan_max));
     let after = after.map(|(at, _)| at);
     match after {
         None => {
