@@ -4406,6 +4406,45 @@ fn a_cone_beside_the_image_whose_flank_climbs_on_into_its_edge_is_unknown() {
 }
 
 #[test]
+fn a_low_boulder_on_a_ramp_at_the_image_s_side_edge_climbs_only_over_the_ramp() {
+    // A Kinect v1 0.93 m high, pitched 32°, rolled −3.8° and yawed 9.7° left, over a
+    // 17.6° ramp across the corridor from 1.06 m, a 4.7 cm boulder on it 1.28 m out in
+    // the right track, which the image's right edge cuts (`sweep -- natural 100 11502
+    // random 10` #26, clean and noisy). Along the edge strip its top stood 9.5 cm over
+    // the ramp 0.15 m before it, 4.8 cm of which the ramp's own rise; with the 2.2 cm
+    // its flank climbs into the edge strip, more than a wheel radius, and steeper than
+    // the limit: `unknown`. The ramp's rise along the strips beyond the flank does
+    // not count: go, measured. A cone 16 cm high there is still no go.
+    let mut c = mounted(
+        [0.259_115_489, 0.013_703_766, 0.932_549_739],
+        [-3.834_296_726, 32.005_113_295, 9.728_986_887],
+    );
+    c.camera.min_range_m = 0.442_446_178;
+    let scene = |height_m: f64, shape| {
+        vec![
+            Element::ramp(1.060_809_691, 0.0, 17.589_027_418, 0.0, Extent::Full),
+            Element::stone(
+                1.275_003_413,
+                -0.485_953_213,
+                0.070_421_915,
+                height_m,
+                shape,
+            ),
+        ]
+    };
+    for v in analyse_views(
+        scene(0.046_947_943, StoneShape::Boulder),
+        &c,
+        [None, Some(11_502_026)],
+    ) {
+        assert_noisy_go(&v, 2, 1.0608, 17.5890);
+    }
+    for v in analyse_views(scene(0.16, StoneShape::Cone), &c, [None, Some(11_502_026)]) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+}
+
+#[test]
 fn a_ramp_under_each_track_seen_by_a_rolled_coarse_camera_is_measured_to_the_view_s_end() {
     // A 320×240 camera 0.93 m high, rolled 8.7°, pitched 24.6° and yawed −7.1°, over a
     // 21.9° ramp under the right track from 1.30 m and another under the left from 1.75

@@ -1,7 +1,7 @@
 //! Rises the image's side edge cuts: a stone in a track whose flank the camera sees
 //! climbing toward the left or right edge of its image, its top beside the view.
 
-use super::{followed, step_floor_reach_m, unknown_judged, Frame, Region};
+use super::{followed, step_floor_reach_m, unknown_judged, Frame, Region, ROUGH_SPREAD_M};
 use crate::verdict::{Hazard, HazardKind, Verdict};
 
 /// Fewest strips across that a rise into the image's side edge must climb over, each
@@ -12,6 +12,11 @@ const SIDE_EXIT_MIN_STRIPS: usize = 2;
 /// Most strips across [`side_exit`] follows a rise back from the image's side edge
 /// to its foot: 20 cm at the default voxel, a large stone's flank.
 const SIDE_EXIT_MAX_STRIPS: usize = 4;
+
+/// Fewest strips, from a flank's foot away from the image's edge, whose rise along the
+/// track [`side_exit`] takes as the ramp the flank stands on: one could lie on the
+/// stone's skirt.
+const RAMP_MIN_STRIPS: usize = 2;
 
 /// A stone whose top lies beside the image: `unknown` ground at the rise.
 ///
@@ -44,6 +49,12 @@ const SIDE_EXIT_MAX_STRIPS: usize = 4;
 /// that went where a stop was due `unknown`, 34 whose stone's top lies beside the
 /// image, and 6 that were due go (stones of 8.3-8.7 cm whose top the image just
 /// holds, their flank cut near it).
+///
+/// Along the strip, what the track's ground off the flank rises itself over the same
+/// rows is a ramp's, which the wheel climbs as it comes to the top: a 4.7 cm boulder on
+/// a 17.6° ramp, the image's edge cutting it, stood 9.5 cm over the ramp 0.15 m before
+/// it, 4.8 cm of that the ramp's rise, and was `unknown` (`natural 100 11502 random 10`
+/// #26, clean and noisy).
 ///
 /// A ramp, straight or diagonal, rises along the track: across it the ground climbs
 /// gently (a 25° ramp at 26° to the rover, 11°), and along it under the limit. The
@@ -107,13 +118,31 @@ pub fn side_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             if strips < SIDE_EXIT_MIN_STRIPS {
                 return false;
             }
-            // Along the strip: the ground a step to the top rises from.
+            // Along the strip: the ground a step to the top rises from, over what the
+            // track's ground off the flank rises itself: the least any of its strips
+            // from the flank's foot away from the edge rises from row `k` to this one
+            // (two at least), less rough ground's spread. A ramp under the track, which
+            // the wheel climbs as it comes to the top; not the flank, which they do not
+            // hold (the foot is the lowest of the strips down it). The edge strips count
+            // too: only the least counts, and a side face there can only lower it.
             let x = s.x_centre(ix);
+            let ramp_rise = |k: usize| {
+                let off = (first..=last).filter(|&j| (j as isize - at as isize) * toward <= 0);
+                let rises = off.filter_map(|j| Some(ground(ix, j)? - ground(k, j)?));
+                let (least, n) = rises.fold((f32::INFINITY, 0), |(m, n), d| (m.min(d), n + 1));
+                if n < RAMP_MIN_STRIPS {
+                    0.0
+                } else {
+                    (least - ROUGH_SPREAD_M).max(0.0)
+                }
+            };
             (0..ix)
                 .rev()
                 .take_while(|&k| x - s.x_centre(k) <= step_floor_reach_m(s.voxel_m, r))
-                .filter_map(|k| ground(k, iy).map(|z| (x - s.x_centre(k), z)))
-                .any(|(run, z)| top - z + climb_on > r && top - z >= tan_max * run)
+                .filter_map(|k| ground(k, iy).map(|z| (k, x - s.x_centre(k), z)))
+                .any(|(k, run, z)| {
+                    top - z - ramp_rise(k) + climb_on > r && top - z >= tan_max * run
+                })
         };
         let Some(ix) = (0..s.nx).find(|&ix| {
             (first..=last)
