@@ -4445,6 +4445,38 @@ fn a_low_boulder_on_a_ramp_at_the_image_s_side_edge_climbs_only_over_the_ramp() 
 }
 
 #[test]
+fn two_low_boulders_fitted_as_one_short_face_ending_in_their_shadow_are_a_low_step() {
+    // A Kinect v1 0.79 m high, pitched 28°, rolled 9.4°, over lumpy ground with
+    // stones (`sweep -- natural 100 11510 random 6` #51, clean): two 6-7 cm boulders
+    // 0.3 m apart on a diagonal in the left track, 2.4 and 2.7 m out, the view past the
+    // farther one in its shadow to the corridor's end. Fitted as one 22.9° face, its
+    // cells 2.4 cm about it: ± 4.5° for the slope judged, 31.8° with its margin, a
+    // `slope`, though the face standing 9.2 cm over the ground before it is a low step.
+    // Go; the nearer boulder 16 cm high is no go.
+    let c = mounted([0.2179, -0.0932, 0.7910], [9.3678, 27.8515, -1.0283]);
+    let field = |height_m: f64| {
+        vec![
+            lumpy(0.193_036_510, 5_633_912_777_021_789_086),
+            Element::stone(2.3951, 0.5514, 0.1174, height_m, StoneShape::Boulder),
+            Element::stone(2.7054, 0.3182, 0.0851, 0.0610, StoneShape::Boulder),
+            Element::stone(1.8856, 0.3596, 0.0786, 0.0514, StoneShape::Cone),
+            Element::stone(1.1660, -0.4286, 0.0718, 0.0549, StoneShape::Boulder),
+            Element::stone(2.3228, -0.3773, 0.0719, 0.0528, StoneShape::Mound),
+            Element::stone(1.9553, -0.4331, 0.1319, 0.0693, StoneShape::Cap),
+        ]
+    };
+    let mut c = c;
+    c.camera.min_range_m = 0.3357;
+    go_low_not_tall(
+        field,
+        [0.0700, 0.16],
+        &c,
+        11_510_051,
+        (Decision::Stop, Side::Left, None),
+    );
+}
+
+#[test]
 fn a_ramp_under_each_track_seen_by_a_rolled_coarse_camera_is_measured_to_the_view_s_end() {
     // A 320×240 camera 0.93 m high, rolled 8.7°, pitched 24.6° and yawed −7.1°, over a
     // 21.9° ramp under the right track from 1.30 m and another under the left from 1.75

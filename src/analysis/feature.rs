@@ -915,25 +915,31 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<StepRe
     // So is one whose view ends only in its own shadow: a stone's front whose far side
     // is hidden to the corridor's end, too steep with the uncertainty of a short face
     // (an 8.6 cm stone on lumpy ground, 11.2 cm over the ground before it, read 25° ±
-    // 3.6°: `sweep -- natural 200 7022 random 6` #80). What its shadow hides, the
-    // crossing tests judge (the ground beside it, a hidden top).
+    // 3.6°: `sweep -- natural 200 7022 random 6` #80), with the uncertainty its slope
+    // is judged with (two 7 cm boulders 0.3 m apart on a diagonal in one track, 9.2 cm
+    // over the ground before them, fitted as a 22.9° face: ± 2.6° from the ground's
+    // roughness, ± 4.5° from its cells' 2.4 cm spread; taken for no low step with the
+    // first and judged with the second, it was a `slope`: `natural 100 11510 random 6`
+    // #51). What its shadow hides, the crossing tests judge (the ground beside it, a
+    // hidden top).
     let too_steep = |gradient: f64, sd: f64| {
         (f.cfg.rover.max_slope_deg..90.0).contains(&(gradient.abs() + super::FACE_MARGIN_SDS * sd))
     };
     let relief = || relief_past_onsets(f, g.z, onset, affected);
-    // The gradient's uncertainty from the ground's roughness, and (for the slope
-    // judged) the larger of that and the face's own cells' noise.
-    let (sd, mut sd_judged) = match face {
+    // The gradient's uncertainty: the larger of the ground's roughness's and the face's
+    // own cells' noise's.
+    let mut sd = match face {
         Some(face) if face.to_view_end && gradient.abs() < 90.0 => {
             let ground =
                 ground_spread(f, &g, onset, affected, &face.plane).unwrap_or(face.spread_m);
-            let rough = gradient_sd_deg(gradient, ground, face.run_m);
-            (
-                rough,
-                rough.max(noise_sd_deg(gradient, face.spread_m, ground, face.along_m)),
-            )
+            gradient_sd_deg(gradient, ground, face.run_m).max(noise_sd_deg(
+                gradient,
+                face.spread_m,
+                ground,
+                face.along_m,
+            ))
         }
-        _ => (0.0, 0.0),
+        _ => 0.0,
     };
     let low_step_face = || {
         face.is_some_and(|face| {
@@ -954,7 +960,7 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<StepRe
     };
     if low_step_face() || stones() {
         (at_ref, gradient, alpha, nearest) = measures(f, onset, None, affected);
-        sd_judged = 0.0;
+        sd = 0.0;
     }
     let step_relief = (gradient.abs() >= 90.0).then(|| StepRelief {
         relief_m: relief(),
@@ -983,7 +989,7 @@ pub fn analyse(f: &Frame, scratch: &mut Scratch) -> (Feature, f64, Option<StepRe
         gradient_deg: Some(gradient as f32),
         alpha_deg: matches!(workcase, 4 | 6 | 7).then_some(alpha as f32),
     };
-    (feature, sd_judged, step_relief)
+    (feature, sd, step_relief)
 }
 
 /// How a face measured as a step stands ([`analyse`]).
