@@ -124,7 +124,8 @@ pub fn side_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             // (two at least), less rough ground's spread. A ramp under the track, which
             // the wheel climbs as it comes to the top; not the flank, which they do not
             // hold (the foot is the lowest of the strips down it). The edge strips count
-            // too: only the least counts, and a side face there can only lower it.
+            // too: only the least counts, and a side face there can only lower it. Asked
+            // only of a rise steeper than the limit.
             let x = s.x_centre(ix);
             let ramp_rise = |k: usize| {
                 let off = (first..=last).filter(|&j| (j as isize - at as isize) * toward <= 0);
@@ -141,7 +142,7 @@ pub fn side_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .take_while(|&k| x - s.x_centre(k) <= step_floor_reach_m(s.voxel_m, r))
                 .filter_map(|k| ground(k, iy).map(|z| (k, x - s.x_centre(k), z)))
                 .any(|(k, run, z)| {
-                    top - z - ramp_rise(k) + climb_on > r && top - z >= tan_max * run
+                    top - z >= tan_max * run && top - z - ramp_rise(k) + climb_on > r
                 })
         };
         let Some(ix) = (0..s.nx).find(|&ix| {
