@@ -5411,3 +5411,40 @@ fn one_rough_descent_read_per_track_within_rough_ground_s_spread_is_one_face() {
         assert_rough_go(&v, 8, 0.804_616_971, -11.926_009_837);
     }
 }
+
+#[test]
+fn ground_falling_away_past_a_track_s_edge_seen_over_its_lip_far_out_is_no_step() {
+    // A Kinect v1 0.64 m high, pitched 18.6°, rolled −9.7° and yawed 8.6°, over ground
+    // falling away at 13.1° beside the right track from 1.34 m (`sweep -- families 100
+    // 11611 random 2` #31, noisy). 2.5 m out, the track's edge strip holds two of the
+    // belly's points at the lip, 27 cm up, and two of the descent's past the lip's
+    // shadow; read as one surface sloping across the strip, its mean stood 13 cm over
+    // the descent before it: a `step` at 2.48 m. Go, workcase 10; a 20 cm step up in
+    // the descent there stops.
+    let mut c = mounted(
+        [0.254_865_652, -0.095_691_068, 0.644_816_448],
+        [-9.729_165_452, 18.585_414_101, 8.598_345_927],
+    );
+    c.camera.min_range_m = 0.339_320_760;
+    let half_plane = Extent::Band {
+        from_m: -100.0,
+        to_m: -0.2,
+    };
+    let descent = Element::ramp(1.337_295_294, -0.45, -13.067_546_064, 0.0, half_plane);
+    for v in analyse_views(vec![descent.clone()], &c, [None, Some(11_611_031)]) {
+        assert_noisy_go(&v, 10, 1.3373, -13.0675);
+    }
+    let step = Element::Step {
+        x_m: 2.3,
+        height_m: 0.2,
+        extent: half_plane,
+    };
+    for v in analyse_views(vec![descent, step], &c, [None, Some(11_611_031)]) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+        assert!(
+            v.hazards.iter().any(|h| h.side == Side::Right),
+            "{:?}",
+            v.hazards
+        );
+    }
+}

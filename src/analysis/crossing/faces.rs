@@ -3,6 +3,7 @@
 
 use super::ROUGH_SPREAD_M;
 use crate::grid::Cell;
+use nalgebra::Vector3;
 
 /// Whether a cell past the horizon holds only the fringe of the face along its strip
 /// that the strip's last seen cell showed (`wall`: that cell's x, top and top's y,
@@ -231,6 +232,36 @@ pub(super) fn slopes_across(cell: &Cell, y_mid: f32, vs: f32) -> bool {
         && dy.abs() >= SIDE_MIN_VOXELS * vs
 }
 
+/// Whether a cell's two bands ([`Cell::crest`], [`Cell::foot`]) could not be one surface
+/// sloping across its strip as the camera at `camera` (rover frame, metres) sees it:
+/// the line of sight to the upper band meets the surface joining them under
+/// [`LIP_SIGHT_DEG`], or from behind. The bands then lie on one line of sight: a lip
+/// and the first ground seen past its shadow (or a face's top and foot seen edge-on),
+/// not the two sides of one slope, and the cell's mean belongs to neither. Ground
+/// falling away 27 cm beside a track's inner edge put two of the belly's points at
+/// its lip into the track's edge strip, 2.5 m out, over two of the descent's just past
+/// the lip's shadow on the strip's far side: read as a slope across, seen at 0.1°, its
+/// mean stood 13 cm over the descent before it, a `step` (`sweep -- families 100 11611
+/// random 2` #31, noisy). A steep slope seen grazingly still gives points between its
+/// bands: a half-plane descent's 77° edge, 2.8 m out, met at 3.7-5.7°, is read across
+/// (`bevelled 100 7506 random` #13, noisy; at [`GRAZING_DEG`](super::GRAZING_DEG) it
+/// was a `step`). For a cell with one band, `false`.
+pub(super) fn lip_over_shadow(cell: &Cell, camera: [f32; 3]) -> bool {
+    let dy = cell.crest_xy[1] - cell.foot_xy[1];
+    if cell.crest == cell.foot || dy == 0.0 {
+        return false;
+    }
+    // The joining surface's upward normal (it runs along x), and the line of sight.
+    let normal = Vector3::new(0.0, -(cell.crest - cell.foot), dy) * dy.signum();
+    let sight = Vector3::new(
+        cell.crest_xy[0] - camera[0],
+        cell.crest_xy[1] - camera[1],
+        cell.crest - camera[2],
+    );
+    let sin_seen = -sight.dot(&normal) / (sight.norm() * normal.norm());
+    sin_seen < LIP_SIGHT_DEG.to_radians().sin()
+}
+
 /// How steeply a cell that [`slopes_across`] its strip slopes across it, metres per
 /// metre of y (positive when it rises to the left): from its two bands' heights and
 /// centres, or with one band, from its top voxel over the points' mean. `None` when
@@ -283,6 +314,10 @@ const ON_FACE_M: f32 = 0.001;
 /// them apart (and for the test of climbs the view ends in to read a belly cell at its
 /// top), metres: above rough ground's spread within one cell.
 pub(super) const FACE_MIN_M: f32 = 0.04;
+/// Below this angle, degrees, the line of sight to a cell's upper band runs along the
+/// surface that would join its two bands ([`lip_over_shadow`]): they lie on one line of
+/// sight, which a slope would not leave them on.
+const LIP_SIGHT_DEG: f32 = 1.0;
 /// Least sideways offset of a face's points from the strip's centre line for
 /// [`ground_beside_face`], voxels: a face hugs the cell's side (0.5), a surface spread
 /// across the cell centres on it (0), whatever the noise.
@@ -404,6 +439,75 @@ mod tests {
         let mut flat = c;
         flat.top = flat.low + 0.03;
         assert!(!slopes_across(&flat, MID, VS));
+    }
+
+    #[test]
+    fn bands_a_slope_across_would_join_out_of_the_camera_s_sight_are_a_lip_and_its_shadow() {
+        // Ground falling away 27 cm beside the right track's inner edge, 2.5 m out
+        // (`sweep -- families 100 11611 random 2` #31, noisy, the edge strip from
+        // y = −0.25 to −0.2, to the millimetre): two of the belly's points at the lip,
+        // two of the descent's past the lip's shadow. The camera, 0.64 m high, looks
+        // over the lip at 80.8° across the strip; a surface joining the bands falls
+        // away at 80.3°, seen at 0.1°.
+        let camera = [0.2549, -0.0957, 0.6448];
+        let lip = Cell {
+            n: 4,
+            x: 2.535,
+            y: -0.224,
+            z: -0.141,
+            top: -0.006,
+            peak: -0.006,
+            top_xy: [2.540, -0.201],
+            low: -0.276,
+            crest: -0.006,
+            foot: -0.276,
+            crest_xy: [2.540, -0.201],
+            foot_xy: [2.531, -0.247],
+        };
+        assert!(slopes_across(&lip, -0.225, VS));
+        assert!(lip_over_shadow(&lip, camera));
+        // A bevel falling away at 45° over the same strip is seen at 9°: one slope.
+        let bevel = Cell {
+            z: -0.02,
+            top: 0.0,
+            peak: 0.0,
+            low: -0.04,
+            crest: 0.0,
+            foot: -0.04,
+            top_xy: [2.540, -0.205],
+            crest_xy: [2.540, -0.205],
+            foot_xy: [2.531, -0.245],
+            ..lip
+        };
+        assert!(!lip_over_shadow(&bevel, camera));
+        // A half-plane descent's 77° edge 2.8 m out, seen from 1.15 m high at 3.7°
+        // (`sweep -- bevelled 100 7506 random` #13, noisy, to the 0.1 mm): five points
+        // spread over it, one slope.
+        let grazed = Cell {
+            n: 5,
+            x: 2.7656,
+            y: 0.2246,
+            z: -0.3053,
+            top: -0.2380,
+            peak: -0.2327,
+            top_xy: [2.7648, 0.2087],
+            low: -0.4062,
+            crest: -0.2380,
+            foot: -0.4062,
+            crest_xy: [2.7648, 0.2087],
+            foot_xy: [2.7669, 0.2483],
+        };
+        assert!(slopes_across(&grazed, 0.225, VS));
+        assert!(!lip_over_shadow(&grazed, [0.2180, 0.0737, 1.1504]));
+        // The lip's bands seen from across the strip: a face rising away, seen well.
+        assert!(!lip_over_shadow(&lip, [0.2549, -0.6, 0.6448]));
+        // One band: nothing to join.
+        let one = Cell {
+            foot: lip.crest,
+            foot_xy: lip.crest_xy,
+            ..lip
+        };
+        assert!(!lip_over_shadow(&one, camera));
     }
 
     #[test]

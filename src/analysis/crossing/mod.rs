@@ -19,7 +19,8 @@ pub(crate) use belly::{median, track_medians};
 use climb::{on_rim, strip_hazards, wheel_heights, STEP_REACH_VOXELS};
 use faces::{
     beside_slope, clear_of_wall, cross_slope, floor_beside_fringe, fringe_of_wall,
-    ground_unseen_beside_face, slopes_across, two_levels, unresolved_ground, wall_goes_on,
+    ground_unseen_beside_face, lip_over_shadow, slopes_across, two_levels, unresolved_ground,
+    wall_goes_on,
 };
 pub(crate) use faces::{ground_beside_face, unresolved_face_along};
 pub use gaps::{gaps, GRAZING_DEG};
@@ -122,7 +123,8 @@ pub fn steps_and_slopes(
                 // the ground on the strip's centre line. Read from its bands, the
                 // strip jumped 13 cm where the lower band ran short (`sweep --
                 // bevelled 60 904 default 0` #24, a `step`).
-                let mut across = !past && slopes_across(cell, y_mid, vs);
+                let mut across =
+                    !past && slopes_across(cell, y_mid, vs) && !lip_over_shadow(cell, f.camera);
                 let z = if across {
                     cell.z
                 } else if past && (along.is_none() || sloped) {
