@@ -5448,3 +5448,26 @@ fn ground_falling_away_past_a_track_s_edge_seen_over_its_lip_far_out_is_no_step(
         );
     }
 }
+
+#[test]
+fn a_tall_mound_whose_front_the_view_ends_on_up_a_smooth_ramp_is_no_go() {
+    // A Kinect v1 0.86 m high pitched 43.9° sees the ground only to 1.85-1.95 m
+    // (`sweep -- natural 100 11702 random 10` #92, clean and noisy): a 14.4° ramp
+    // across the corridor from 1.54 m, and a 19.9 cm mound 0.16 m in radius at 1.97 m
+    // in the left track, its top out of view. Where the view ends, its front stands
+    // 2-3 cm over the ramp's line in four strips; two bent up steeply by 2 cm, too few
+    // for an unseen front, and it was a go. Not go; the ramp alone is measured.
+    let mut c = mounted(
+        [0.126_639_402, 0.051_199_986, 0.858_090_240],
+        [-0.909_319_522, 43.902_915_947, 2.978_678_116],
+    );
+    c.camera.min_range_m = 0.471_571_045;
+    let ramp = Element::ramp(1.543_881_984, 0.0, 14.372_647_614, 0.0, Extent::Full);
+    let mound = Element::stone(1.9697, 0.4575, 0.1615, 0.1992, StoneShape::Mound);
+    for v in analyse_views(vec![ramp.clone(), mound], &c, [None, Some(11_702_092)]) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+    }
+    for v in analyse_views(vec![ramp], &c, [None, Some(11_702_092)]) {
+        assert_noisy_go(&v, 2, 1.5439, 14.3726);
+    }
+}

@@ -388,8 +388,7 @@ fn continues_beside(f: &Frame, surface: &[f32], iy: usize, start: usize, d: isiz
 /// count however wide the band: a 21 cm step under a track, seen rising 5-6 cm in
 /// three strips where a rolled camera's view ends across it, was a noisy go.
 /// On smooth ground a front the view ends on, seen from up to two cells before the
-/// cut, counts from a smaller bend ([`bends_up`], in [`BENT_STRIPS`] inner strips, or
-/// in [`BENT_TALL_STRIPS`] where it bends [`STEEP_EXIT_RISE_M`] or more).
+/// cut, counts from a smaller bend ([`bends_up`], in [`BENT_STRIPS`] inner strips).
 /// A ramp rising out of view at a passable slope is not this: it stays go, measured.
 /// Edge strips take no part ([`inner_strips`]): a one-track ramp's side face rises
 /// out of view in them.
@@ -413,7 +412,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
         let (mut tall, mut over, mut nearest) = (0usize, 0usize, f32::INFINITY);
         let (mut short, mut short_nearest, mut inner) = (0usize, f32::INFINITY, 0usize);
         let (mut any_tall, mut any_nearest) = (0usize, f32::INFINITY);
-        let (mut bent, mut bent_tall, mut bent_nearest) = (0usize, 0usize, f32::INFINITY);
+        let (mut bent, mut bent_nearest) = (0usize, f32::INFINITY);
         for iy in inner_strips(f, region) {
             inner += 1;
             let ground = |ix: usize| {
@@ -461,9 +460,8 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .chain(climb)
                 .chain(cut.clone().map(|(_, c)| (c.crest_xy[0], c.crest)));
             let steep = face || line_fit(points).is_some_and(|(p, _)| p.a as f32 >= tan_max);
-            if let Some((x, bend)) = bends_up(f, iy, h, before(), cut, tan_max) {
+            if let Some(x) = bends_up(f, iy, h, before(), cut, tan_max) {
                 bent += 1;
-                bent_tall += usize::from(bend >= STEEP_EXIT_RISE_M);
                 bent_nearest = bent_nearest.min(x);
             }
             if !steep && !spread {
@@ -485,7 +483,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             (true, nearest)
         } else if any_tall >= SPREAD_TALL_STRIPS {
             (true, any_nearest)
-        } else if bent >= BENT_STRIPS || bent_tall >= BENT_TALL_STRIPS {
+        } else if bent >= BENT_STRIPS {
             (true, bent_nearest)
         } else {
             (broad(short, inner), short_nearest)
@@ -579,8 +577,7 @@ fn fronts<'c>(
 
 /// Where a strip's view ends (`h`, its first cut cell) on smooth ground, whether the
 /// cut cells show a rise steeper than the rover climbs: the x of the last ground cell
-/// on the smooth ground's line and the most a cut cell's top stands over that line,
-/// metres, or `None`.
+/// on the smooth ground's line, metres, or `None`.
 ///
 /// `before` is the strip's ground over the wheelbase before `h`, one cell after the
 /// other from `h − 1` back (its k-th item is cell `h − 1 − k`); `cut` its seen cells
@@ -596,7 +593,9 @@ fn fronts<'c>(
 /// the limit keeps every point, so their mean, under that line; a cut cell past it
 /// not that high shows the top level, a low step's seen whole past its face: without
 /// it a 4.5 cm step the view ends on was `unknown`, `sweep -- hazards 100 10704
-/// random` #82; its noisy frame, the top seen in the last cut cell only, still is).
+/// random` #82; its noisy frame, the top seen in the last cut cell only, still is,
+/// and since [`BENT_STRIPS`] asks for two strips, so is its clean frame, where two
+/// strips see the top only in their last cut cell).
 /// The far edge alone let a 19.4 cm mound 0.5 m up an 11° ramp, seen rising 5.6 cm
 /// over 6.5 cm into the cut, pass as climbing 29° (`sweep -- natural 100 10902 random
 /// 10` #87). And [`FRONT_RISING_M`] or more above the upper surface (`crest`) of the
@@ -618,7 +617,7 @@ fn bends_up<'c>(
     before: impl Iterator<Item = (f32, f32)> + Clone,
     cut: impl Iterator<Item = (usize, &'c Cell)> + Clone,
     tan_max: f32,
-) -> Option<(f32, f32)> {
+) -> Option<f32> {
     let s = f.spec;
     (0..=FRONT_CELLS).find_map(|lead| {
         let window = before.clone().skip(lead);
@@ -630,9 +629,8 @@ fn bends_up<'c>(
             .fold(f32::NEG_INFINITY, f32::max);
         let on_line = |x: f32| line.z(f64::from(x), 0.0) as f32;
         let near = s.x_centre(end) + 0.5 * s.voxel_m;
-        let bend = cut
-            .clone()
-            .filter_map(|(ix, c)| {
+        cut.clone()
+            .any(|(ix, c)| {
                 let far = s.x_centre(ix) + 0.5 * s.voxel_m;
                 let bend = c.top - on_line(far);
                 let steep_to = |x: f32| c.top - on_line(near) >= tan_max * (x - near).max(0.0);
@@ -646,11 +644,9 @@ fn bends_up<'c>(
                         .all(|(_, d)| d.top >= c.top + FRONT_RISING_M)
                 };
                 let steep = steep_to(far) || (steep_to(c.top_xy[0].min(far)) && rises_on());
-                (bend >= BEND_RISE_M && steep && c.top >= front_top + FRONT_RISING_M)
-                    .then_some(bend)
+                bend >= BEND_RISE_M && steep && c.top >= front_top + FRONT_RISING_M
             })
-            .reduce(f32::max)?;
-        Some((last_x, bend))
+            .then_some(last_x)
     })
 }
 
@@ -710,18 +706,18 @@ pub(crate) const FRONT_RISING_M: f32 = 0.01;
 /// after its first centimetres stands 2-5 cm above it.
 const BEND_RISE_M: f32 = 0.02;
 /// Fewest inner strips of a band whose view ends bending up steeply on smooth ground
-/// ([`bends_up`]) for [`steep_exit`] to take it for an unseen front: 15 cm, so one
-/// or two strips of noise do not count.
-const BENT_STRIPS: usize = 3;
-/// Fewer inner strips suffice where each bends up [`STEEP_EXIT_RISE_M`] or more over
-/// its smooth ground's line: 10 cm of a front, beyond noise and rough ground's peak
-/// to peak. A 15.3 cm mound 0.15 m up a smooth 13.5° ramp, cut by a low 320×240
-/// camera's top edge, rose 5.2-5.8 cm over the ramp's line in two strips; on its
-/// flanks beside them the front rose more gently than the limit and stopped rising
-/// where the view ended (`sweep -- natural 100 3110 random 10` #65, clean and noisy,
-/// a go). A 7.7 cm rock at the view's end on rough ground whose cells lay on a line
-/// bent 3.4-3.7 cm in two strips, and goes (`families 100 3101 random` #28).
-const BENT_TALL_STRIPS: usize = 2;
+/// ([`bends_up`]) for [`steep_exit`] to take it for an unseen front: 10 cm, so one
+/// strip of noise does not count. On smooth ground (cells within
+/// [`SMOOTH_GROUND_RMS_M`] of a line) a steep bend of [`BEND_RISE_M`] in two strips is
+/// beyond depth noise, and how far it rises says nothing of how high the front goes:
+/// a 19.9 cm mound 0.16 m in radius, 0.4 m up a smooth 14.4° ramp, showed only its
+/// outer flank before the view ended, 2-3 cm over the ramp's line in four strips, two
+/// of them bent steeply by 2.1 cm, and was a go at three (`sweep -- natural 100 11702
+/// random 10` #92, clean and noisy); a 15.3 cm mound 0.15 m up a 13.5° ramp rose 5.2-5.8
+/// cm in two strips (`natural 100 3110 random 10` #65). A 7.7 cm rock at the view's
+/// end on rough ground whose cells lay on a line, bent 3.4-3.7 cm in two strips, is
+/// `unknown` too (`families 100 3101 random` #28, clean): its top is not seen.
+const BENT_STRIPS: usize = 2;
 
 /// Least rise from a climb's foot to the top of the cut cells the view ends in for
 /// [`steep_exit`], metres: more than rough ground's peak to peak (±2.5 cm).
