@@ -5471,3 +5471,34 @@ fn a_tall_mound_whose_front_the_view_ends_on_up_a_smooth_ramp_is_no_go() {
         assert_noisy_go(&v, 2, 1.5439, 14.3726);
     }
 }
+
+#[test]
+fn ground_falling_away_past_a_belly_strip_s_edge_hidden_by_it_is_no_drop_off() {
+    // A 320×240 camera 0.57 m high, rolled −9.6° and yawed 7.3°, over a 9.9° descent
+    // under the left track from 1.54 m, drawn from 4.4 cm inside the belly band,
+    // capped 0.23 m down (`sweep -- widened 100 11707 random 3` #40, clean and
+    // noisy). The belly band's edge strip holds a 6 mm sliver of the level belly
+    // ground; the descent past it lies in that edge's shadow and, past 2.1 m, the
+    // strip's cells get one or two points: a `drop_off`. Go, workcase 9; the descent
+    // breaking off 0.4 m deeper at 2.2 m stops.
+    let c = qvga(
+        mounted(
+            [0.127_882_250, -0.092_063_670, 0.567_203_282],
+            [-9.599_329_324, 26.108_906_934, 7.272_663_406],
+        ),
+        0.332_006_845,
+    );
+    let band = Extent::Band {
+        from_m: 0.156_220_551,
+        to_m: 1.003_048_771,
+    };
+    let descent = Element::ramp(1.544_801_681, 0.45, -9.883_396_903, 0.0, band);
+    let views = [None, Some(11_707_040)];
+    for v in analyse_views(vec![descent.clone().capped(Some(0.233_520_563))], &c, views) {
+        assert_noisy_go(&v, 9, 1.5448, -9.8834);
+    }
+    let edge = Element::ramp(2.2, 0.45, -85.0, 0.0, band).capped(Some(0.4));
+    for v in analyse_views(vec![descent, edge], &c, views) {
+        assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
+    }
+}

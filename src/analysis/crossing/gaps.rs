@@ -408,7 +408,9 @@ const ROUGH_MIN_CELLS: usize = 8;
 
 /// Whether the unseen cells `unseen` of strip `iy` lie on ground that falls away
 /// across the strip so steeply that the camera meets it at under [`GRAZING_DEG`] (or
-/// it faces away). In each cell's row the ground is taken as the line between the
+/// it faces away), or in the shadow of the fall's top edge: the line of sight to the
+/// cell at the height of the fall's foot passes under something seen
+/// ([`visibility::explained`]). In each cell's row the ground is taken as the line between the
 /// nearest seen cells within [`ACROSS_STRIPS`] on either side ([`across_row`]), one
 /// [`ACROSS_DROP_M`] or more below the other (where the row sees nothing on the low
 /// side, the fall of the row before carried on: [`fall_goes_on`]), sloping `k` along
@@ -424,6 +426,13 @@ const ROUGH_MIN_CELLS: usize = 8;
 /// A pit in a trench's floor along the strip beside the belly band lies between the
 /// belly's ground and the floor too, but the strip before it is on the floor, at the
 /// foot (`belly_ground_spilled_into_a_tracks_edge_strip_ends_no_gap`).
+///
+/// A vertical edge seen across the strip from a low camera hides the ground past it
+/// for a few centimetres. Where the strip beside the edge on its low side is in that
+/// shadow too, the row's fall runs to a strip farther off and reads gentler than it
+/// is: a 16 cm edge 4.4 cm inside the belly band, the fall taken over 15 cm, was
+/// met at 9°, and the belly's edge strip, in the edge's shadow past 2.1 m, was a
+/// `drop_off` (`sweep -- widened 100 11707 random 3` #40, noisy).
 fn grazing_across(
     f: &Frame,
     iy: usize,
@@ -448,7 +457,9 @@ fn grazing_across(
             let z = za + ky * (y - ya);
             let normal = Vector3::new(-k, -ky, 1.0).normalize();
             let to_camera = Vector3::new(c[0] - x, c[1] - y, c[2] - z).normalize();
+            // Met grazingly, or hidden by the fall's top edge at its foot's level.
             normal.dot(&to_camera).asin() < GRAZING_DEG.to_radians()
+                || visibility::explained(f, ix, iy, za.min(zb))
         })
 }
 
@@ -520,8 +531,12 @@ type Fall = ((f32, f32), (f32, f32));
 
 /// How many strips to either side [`grazing_across`] looks for seen ground.
 const ACROSS_STRIPS: usize = 3;
-/// Least fall across between those seen cells for [`grazing_across`], metres.
-const ACROSS_DROP_M: f32 = 0.1;
+/// Least fall across between those seen cells for [`grazing_across`], metres: more
+/// than rough ground's peak to peak (5 cm). The belly's edge strip beside a descent
+/// drawn 4.4 cm into the belly band, its last seen cell 2.07 m out where the descent
+/// had fallen 9.2 cm, was a `drop_off` at 10 cm (`sweep -- widened 100 11707 random
+/// 3` #40, clean).
+const ACROSS_DROP_M: f32 = 0.08;
 /// Least share of the fall across that the strip's last seen ground stands over its
 /// foot for [`grazing_across`].
 const ACROSS_OFF_FOOT_SHARE: f32 = 0.1;
