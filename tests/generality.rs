@@ -3338,14 +3338,17 @@ fn mixed_pixels_beside_ground_falling_away_make_no_stop_and_a_drop_there_still_s
 }
 
 #[test]
-fn a_low_step_whose_top_the_view_ends_on_seen_level_past_its_face_is_go() {
+fn a_low_step_whose_top_the_view_ends_on_is_no_step_and_a_tall_one_stops() {
     // `sweep -- hazards 100 10704 random` #82: a Kinect v1 0.81 m high, rolled −8.5°
     // and pitched 40°, sees a 4.5 cm step across the corridor 2.13 m out. In the left
     // track the view ends on it: its first cut cell holds the face and the step's top,
     // the next ones the top, level. Measured to that cell's top voxel, the climb from
     // the ground is steeper than the limit, but the cells past it show the top level:
-    // the step is seen whole, the step test's (under a wheel radius: go). The same
-    // step 25 cm high is a stop.
+    // the step is seen whole, the step test's, under a wheel radius. Two strips see
+    // the top only in their one cut cell, though, and a front the view ends on counts
+    // in two strips (a 19.9 cm mound showed no more, `natural 100 11702 random 10`
+    // #92): so it may be `unknown` at the step, its height not seen, but never a
+    // `step` or `slope`. The same step 25 cm high is a stop.
     let c = mounted(
         [0.071_539_553, 0.077_126_942, 0.805_100_301],
         [-8.538_559_540, 40.051_352_478, 1.293_722_873],
@@ -3357,7 +3360,14 @@ fn a_low_step_whose_top_the_view_ends_on_seen_level_past_its_face_is_go() {
             extent: Extent::Full,
         }]
     };
-    assert_eq!(analyse(step(0.044_594_876), &c).decision, Decision::Go);
+    let low = analyse(step(0.044_594_876), &c);
+    assert!(
+        low.hazards
+            .iter()
+            .all(|h| h.kind == HazardKind::Unknown && (h.distance_m - 2.1).abs() < 0.1),
+        "{:?}",
+        low.hazards
+    );
     assert_eq!(analyse(step(0.25), &c).decision, Decision::Stop);
 }
 
