@@ -5512,3 +5512,35 @@ fn ground_falling_away_past_a_belly_strip_s_edge_hidden_by_it_is_no_drop_off() {
         assert_eq!(v.decision, Decision::Stop, "{:?}", v.feature);
     }
 }
+
+#[test]
+fn a_belly_strip_holding_a_sliver_of_level_ground_beside_a_descent_where_the_view_ends_is_go() {
+    // A 320×240 camera 0.77 m high, rolled −6.3° and pitched 38°, over an 8.6°
+    // descent under the left track from 1.54 m, drawn from 9 cm inside the belly
+    // band, capped 0.24 m down (`sweep -- widened 100 11807 random 3` #54, noisy).
+    // A belly strip holds a 1 cm sliver of level ground along its side and the
+    // descent beside it; 2.85 m out, the cell the image's top edge cuts held two of
+    // the sliver's points over the descent's 15 cm down, and the strip "rose" to
+    // them: `unknown`. Go, workcase 9; a wall rising from the descent where the view
+    // ends is no go.
+    let c = qvga(
+        mounted(
+            [0.205_412_407, 0.042_825_054, 0.771_800_988],
+            [-6.336_430_079, 37.994_131_414, 2.197_378_496],
+        ),
+        0.498_631_845,
+    );
+    let band = Extent::Band {
+        from_m: 0.110_387_496,
+        to_m: 0.748_509_989,
+    };
+    let descent = Element::ramp(1.536_455_345, 0.45, -8.560_934_443, 0.0, band);
+    let views = [None, Some(11_807_054)];
+    for v in analyse_views(vec![descent.clone().capped(Some(0.243_725_475))], &c, views) {
+        assert_noisy_go(&v, 9, 1.5365, -8.5609);
+    }
+    let wall = Element::ramp(2.7, 0.0, 85.0, 0.0, Extent::Full).capped(Some(0.5));
+    for v in analyse_views(vec![descent, wall], &c, views) {
+        assert_ne!(v.decision, Decision::Go, "{:?}", v.hazards);
+    }
+}
