@@ -26,7 +26,7 @@ use nalgebra::Vector3;
 /// standing in the strip), or a surface across the cell.
 pub(super) fn wall_goes_on(cell: &Cell, wall: Option<[f32; 3]>, y_mid: f32, vs: f32) -> bool {
     let side = FACE_OFF_VOXELS * vs;
-    (cell.top_xy[1] - y_mid).abs() >= side
+    top_hugs_side(cell, y_mid, vs)
         && wall.is_some_and(|[x, top, top_y]| {
             let on_line = |y: f32| (y - top_y).abs() <= side;
             (cell.crest == cell.foot || on_line(cell.crest_xy[1]))
@@ -46,7 +46,7 @@ pub(super) fn wall_goes_on(cell: &Cell, wall: Option<[f32; 3]>, y_mid: f32, vs: 
 /// of the outer ground's wall on the corridor's edge, stood 11 cm over the floor of a
 /// one-track descent, a `step` (`sweep -- oblique 100 4203 random` #26, noisy).
 pub(super) fn clear_of_wall(cell: &Cell, [_, top, _]: [f32; 3], y_mid: f32, vs: f32) -> bool {
-    (cell.top_xy[1] - y_mid).abs() < FACE_OFF_VOXELS * vs && cell.top <= top + ROUGH_SPREAD_M
+    !top_hugs_side(cell, y_mid, vs) && cell.top <= top + ROUGH_SPREAD_M
 }
 
 /// Whether a cell seen whole holds the fringe of a face along its strip standing more
@@ -60,9 +60,14 @@ pub(super) fn clear_of_wall(cell: &Cell, [_, top, _]: [f32; 3], y_mid: f32, vs: 
 /// it, their tops read as a rise of the floor (`sweep -- families 100 5606 random` #3,
 /// noisy: a 16 cm `step` 2.35 m out).
 pub(super) fn fringe_of_wall(cell: &Cell, z: f32, y_mid: f32, r: f32, vs: f32) -> bool {
-    cell.crest == cell.foot
-        && cell.top - z > r
-        && (cell.top_xy[1] - y_mid).abs() >= FACE_OFF_VOXELS * vs
+    cell.crest == cell.foot && cell.top - z > r && top_hugs_side(cell, y_mid, vs)
+}
+
+/// Whether a cell's top voxel hugs its strip's side: [`FACE_OFF_VOXELS`] or more off
+/// the strip's centre line `y_mid` (metres; `vs` the voxel size), where a face along
+/// the strip or the ground beside it puts it, not a surface across the cell.
+pub(super) fn top_hugs_side(cell: &Cell, y_mid: f32, vs: f32) -> bool {
+    (cell.top_xy[1] - y_mid).abs() >= FACE_OFF_VOXELS * vs
 }
 
 /// The floor's height in a cell past the horizon that holds a wall's fringe

@@ -2,7 +2,7 @@
 //! whose far side is hidden, a climb whose foot lies before the view, a climb that
 //! leaves the view too steep to be a ramp.
 
-use super::faces::{two_levels, FACE_OFF_VOXELS};
+use super::faces::{top_hugs_side, two_levels, FACE_OFF_VOXELS};
 use super::gaps::from_rover_ground;
 use super::{
     followed, line_fit, sharp_apex, unknown_judged, Frame, Region, ROUGH_LINE_RMS_M,
@@ -577,7 +577,7 @@ fn fronts<'c>(
 
 /// Whether cut cell `cell` of strip `iy` (whose view ends at row `h`) shows the
 /// ground beside the strip, not a front across it: its top voxel hugs the strip's
-/// side ([`FACE_OFF_VOXELS`] off its centre line), and the strip on that side, seen
+/// side ([`top_hugs_side`]), and the strip on that side, seen
 /// in the row before the view ends (row `h − 1`, not past the horizon), stands no
 /// lower there than that top less rough ground's spread ([`ROUGH_SPREAD_M`]). A face
 /// along the strip lies inside it, the higher ground beside on one side; where the
@@ -590,11 +590,11 @@ fn fronts<'c>(
 /// rises there too, and is still judged.
 fn top_beside(f: &Frame, iy: usize, h: usize, cell: &Cell) -> bool {
     let s = f.spec;
-    let off = cell.top_xy[1] - s.y_centre(iy);
-    if off.abs() < FACE_OFF_VOXELS * s.voxel_m {
+    let y_mid = s.y_centre(iy);
+    if !top_hugs_side(cell, y_mid, s.voxel_m) {
         return false;
     }
-    let toward = if off > 0.0 {
+    let toward = if cell.top_xy[1] > y_mid {
         iy.checked_add(1)
     } else {
         iy.checked_sub(1)
