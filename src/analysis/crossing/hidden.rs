@@ -402,7 +402,10 @@ fn continues_beside(f: &Frame, surface: &[f32], iy: usize, start: usize, d: isiz
 /// across it, `unknown` (a ramp 11 cm into the band, capped at 0.36 m: `sweep --
 /// widened 100 1202 default 0` #21). The cell of a front seen before the cut, read at
 /// its top, only steepens the climb to it. A cut cell's face or spread counts only
-/// where it rises on past the strip's ground before the cut ([`fronts`]).
+/// where it rises on past the strip's ground before the cut ([`fronts`]). A low front
+/// (within a wheel radius and [`UNSEEN_FOOT_MARGIN_M`], [`low_step`]) whose top is
+/// seen levelling off, in the strip or in strips of its band beside it, takes no part
+/// ([`top_seen_level`]): the step test judges it.
 pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let rover = &f.cfg.rover;
     let tan_max = (rover.max_slope_deg as f32).to_radians().tan();
@@ -448,7 +451,9 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .map(|(_, c)| c.top)
                 .fold(f32::NEG_INFINITY, f32::max);
             let rise = top - foot.1;
-            if rise < STEEP_EXIT_SHORT_RISE_M {
+            if rise < STEEP_EXIT_SHORT_RISE_M
+                || (low_step(rise, rover) && top_seen_level(f, region, iy, h, top, tan_max))
+            {
                 continue;
             }
             // A face across the strip within one cut cell, or the climb and the cut
@@ -604,6 +609,63 @@ fn top_beside(f: &Frame, iy: usize, h: usize, cell: &Cell) -> bool {
         .zip(h.checked_sub(1))
         .map(|(j, ix)| s.cell(ix, j))
         .is_some_and(|c| f.seen[c] && !f.past[c] && cell.top <= f.cells[c].z + ROUGH_SPREAD_M)
+}
+
+/// Least run along a strip between the two level cells that show a front's top
+/// seen ([`top_seen_level`]), in voxels: half a cell.
+const LEVEL_RUN_VOXELS: f32 = 0.5;
+
+/// Whether the top of the front strip `iy` of `region` climbs where its view ends
+/// (its cut cells' `top`, metres, from row `h` on) is seen, and levels off: in this
+/// strip or in an inner strip of the band reached from it through strips that each
+/// hold a level cell at that height (rows `h − 1` to `h + CUT_CELLS − 1`), two cells
+/// of those rows are level at it over half a cell or more ([`LEVEL_RUN_VOXELS`]),
+/// climbing between them at half the slope limit `tan_max` at most. A level cell's
+/// points span rough ground's spread at most ([`ROUGH_SPREAD_M`]), its top within it
+/// of `top`.
+///
+/// A low step across the corridor whose face a steeply pitched camera's view ends
+/// just past was `unknown` in every strip where the image's top edge left only one
+/// cell of the step's level top: a wall could rise from there on. Strips whose view
+/// reaches farther see the top level over two cells: the front ended there, at a
+/// height the step test takes as a low step (`sweep -- hazards 100 12004 random`
+/// #28: an 8.6 cm step, a camera 0.81 m high pitched 43°). A ramp steeper than the
+/// limit rising out of view climbs on between any two of its cells; a wall's face
+/// lies in one cell, the one before its top.
+fn top_seen_level(f: &Frame, region: Region, iy: usize, h: usize, top: f32, tan_max: f32) -> bool {
+    let s = f.spec;
+    let rows = h.saturating_sub(1)..(h + CUT_CELLS).min(s.nx);
+    let level = |ix: usize, j: usize| {
+        let c = s.cell(ix, j);
+        let cell = &f.cells[c];
+        (f.seen[c]
+            && cell.peak - cell.low <= ROUGH_SPREAD_M
+            && (cell.top - top).abs() <= ROUGH_SPREAD_M)
+            .then_some(cell)
+    };
+    let at_top = |j: usize| rows.clone().any(|ix| level(ix, j).is_some());
+    let plateau = |j: usize| {
+        rows.clone().zip(rows.clone().skip(1)).any(|(a, b)| {
+            level(a, j).zip(level(b, j)).is_some_and(|(near, far)| {
+                let run = far.x - near.x;
+                run >= LEVEL_RUN_VOXELS * s.voxel_m
+                    && (far.top - near.top).abs() <= 0.5 * tan_max * run
+            })
+        })
+    };
+    let inner = |j: usize| inner_strips(f, region).any(|k| k == j);
+    [-1isize, 1].into_iter().any(|d| {
+        let mut j = iy;
+        loop {
+            if plateau(j) {
+                return true;
+            }
+            match j.checked_add_signed(d).filter(|&k| inner(k) && at_top(k)) {
+                Some(k) => j = k,
+                None => return false,
+            }
+        }
+    })
 }
 
 /// Where a strip's view ends (`h`, its first cut cell) on smooth ground, whether the
