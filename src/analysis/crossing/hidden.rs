@@ -452,7 +452,8 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .fold(f32::NEG_INFINITY, f32::max);
             let rise = top - foot.1;
             if rise < STEEP_EXIT_SHORT_RISE_M
-                || (low_step(rise, rover) && top_seen_level(f, region, iy, h, top, tan_max))
+                || (low_step(rise, rover)
+                    && top_seen_level(f, region, (iy, h), (foot.1, top), tan_max))
             {
                 continue;
             }
@@ -616,41 +617,58 @@ fn top_beside(f: &Frame, iy: usize, h: usize, cell: &Cell) -> bool {
 const LEVEL_RUN_VOXELS: f32 = 0.5;
 
 /// Whether the top of the front strip `iy` of `region` climbs where its view ends
-/// (its cut cells' `top`, metres, from row `h` on) is seen, and levels off: in this
-/// strip or in an inner strip of the band reached from it through strips that each
-/// hold a level cell at that height (rows `h − 1` to `h + CUT_CELLS − 1`), two cells
-/// of those rows are level at it over half a cell or more ([`LEVEL_RUN_VOXELS`]),
-/// climbing between them at half the slope limit `tan_max` at most. A level cell's
-/// points span rough ground's spread at most ([`ROUGH_SPREAD_M`]), its top within it
+/// (`h`, its first cut cell; `(foot, top)` the climb's foot and its cut cells' top,
+/// metres) is seen, and levels off: in this strip or in an inner strip of the band
+/// reached from it through strips that each hold a level cell at that height (rows
+/// `h − 1` to `h + CUT_CELLS − 1`), one cell holds the whole front, its points from
+/// the foot to the top (within rough ground's spread, [`ROUGH_SPREAD_M`]), and the two
+/// cells past it are level at the top over half a cell or more
+/// ([`LEVEL_RUN_VOXELS`]), climbing between them at half the slope limit `tan_max` at
+/// most. A level cell's points span rough ground's spread at most, its top within it
 /// of `top`.
 ///
 /// A low step across the corridor whose face a steeply pitched camera's view ends
 /// just past was `unknown` in every strip where the image's top edge left only one
-/// cell of the step's level top: a wall could rise from there on. Strips whose view
-/// reaches farther see the top level over two cells: the front ended there, at a
-/// height the step test takes as a low step (`sweep -- hazards 100 12004 random`
-/// #28: an 8.6 cm step, a camera 0.81 m high pitched 43°). A ramp steeper than the
-/// limit rising out of view climbs on between any two of its cells; a wall's face
-/// lies in one cell, the one before its top.
-fn top_seen_level(f: &Frame, region: Region, iy: usize, h: usize, top: f32, tan_max: f32) -> bool {
+/// cell of the step's level top: a wall could rise on from there. Strips whose view
+/// reaches farther see the face in one cell and the top level over the next two: the
+/// front ends there, at a height the step test takes as a low step (`sweep -- hazards
+/// 100 12004 random` #28: an 8.6 cm step, a camera 0.81 m high pitched 43°). A ramp
+/// steeper than the limit rising out of view climbs on between any two of its cells;
+/// a ramp under it, on which a mound's flank rises out of view, is level enough cell by
+/// cell, but no cell before it holds a front (`natural 100 11702 random 10` #92, a
+/// 19.9 cm mound up a 14.4° ramp, went without that).
+fn top_seen_level(
+    f: &Frame,
+    region: Region,
+    (iy, h): (usize, usize),
+    (foot, top): (f32, f32),
+    tan_max: f32,
+) -> bool {
     let s = f.spec;
     let rows = h.saturating_sub(1)..(h + CUT_CELLS).min(s.nx);
-    let level = |ix: usize, j: usize| {
+    let at = |ix: usize, j: usize| {
         let c = s.cell(ix, j);
-        let cell = &f.cells[c];
-        (f.seen[c]
-            && cell.peak - cell.low <= ROUGH_SPREAD_M
-            && (cell.top - top).abs() <= ROUGH_SPREAD_M)
-            .then_some(cell)
+        f.seen[c].then_some(&f.cells[c])
+    };
+    let level = |ix: usize, j: usize| {
+        at(ix, j).filter(|cell| {
+            cell.peak - cell.low <= ROUGH_SPREAD_M && (cell.top - top).abs() <= ROUGH_SPREAD_M
+        })
+    };
+    let whole_front = |ix: usize, j: usize| {
+        at(ix, j).is_some_and(|cell| {
+            cell.low <= foot + ROUGH_SPREAD_M && cell.peak >= top - ROUGH_SPREAD_M
+        })
     };
     let at_top = |j: usize| rows.clone().any(|ix| level(ix, j).is_some());
     let plateau = |j: usize| {
         rows.clone().zip(rows.clone().skip(1)).any(|(a, b)| {
-            level(a, j).zip(level(b, j)).is_some_and(|(near, far)| {
-                let run = far.x - near.x;
-                run >= LEVEL_RUN_VOXELS * s.voxel_m
-                    && (far.top - near.top).abs() <= 0.5 * tan_max * run
-            })
+            a.checked_sub(1).is_some_and(|face| whole_front(face, j))
+                && level(a, j).zip(level(b, j)).is_some_and(|(near, far)| {
+                    let run = far.x - near.x;
+                    run >= LEVEL_RUN_VOXELS * s.voxel_m
+                        && (far.top - near.top).abs() <= 0.5 * tan_max * run
+                })
         })
     };
     let inner = |j: usize| inner_strips(f, region).any(|k| k == j);
