@@ -49,7 +49,11 @@
 //! that pass as well as those that fail. A go where a stop was due also prints, for
 //! each stone or rock drawn 12 cm or higher, how high its apex stands over the ground
 //! before it (`RELIEF #N ...`, sampled from the height field); a stop where a go was
-//! due prints it for every stone and rock. A go where a stop was due on a mount that
+//! due prints it for every stone and rock. A failed frame on rough ground under one
+//! straight full-width ramp or descent prints the plane of the rendered surface itself
+//! from the drawn toe to where the tracks are seen (`SURFACE #N ...`,
+//! `families::surface_toe`): rough ground's bumps move it off the drawn ramp, and no
+//! fit to what the camera sees can come nearer. A go where a stop was due on a mount that
 //! never sees an obstacle a wheel radius high whole in some strip of the corridor
 //! (`rover_terrain::coverage`) prints `COVER #N ...` naming those strips, and a line
 //! counts such frames: no frame of that mount can measure what stands there.
@@ -101,7 +105,7 @@ use rand_chacha::ChaCha8Rng;
 use rover_terrain::analysis::GRAZING_DEG;
 use rover_terrain::coverage::Coverage;
 use rover_terrain::sim::{
-    self, families, random, Element, Expectation, KinectNoise, Terrain, Tolerance,
+    self, families, random, Element, Expectation, Extent, KinectNoise, Terrain, Tolerance,
 };
 use rover_terrain::validate::{compare, CLEAN, NOISY};
 use rover_terrain::verdict::Hazard;
@@ -390,6 +394,9 @@ fn main() {
                 for r in triage_reliefs(&terrain, v.decision, want.verdict) {
                     println!("RELIEF #{i} noisy={noisy} {r}");
                 }
+                if let Some(s) = surface_plane(&terrain, &config, v) {
+                    println!("SURFACE #{i} noisy={noisy} {s}");
+                }
             }
         }
     }
@@ -578,6 +585,36 @@ fn reliefs(terrain: &Terrain, least_m: f64) -> Vec<String> {
             _ => None,
         })
         .collect()
+}
+
+/// For a failed frame's triage on rough or lumpy ground under one straight full-width
+/// ramp or descent: the plane of the rendered surface itself from the drawn toe to
+/// where the verdict saw both tracks (`families::surface_toe`, a hand calculation).
+/// Rough ground's bumps move that plane off the drawn ramp, and no fit to what the
+/// camera sees comes nearer the drawn ramp than the surface it sees.
+fn surface_plane(terrain: &Terrain, config: &Config, v: &Verdict) -> Option<String> {
+    let rough = terrain
+        .elements
+        .iter()
+        .any(|e| matches!(e, Element::Rough { .. } | Element::Lumpy { .. }));
+    let mut ramps = terrain.elements.iter().filter_map(|e| match *e {
+        Element::Ramp {
+            toe_x_m,
+            alpha_deg: 0.0,
+            extent: Extent::Full,
+            cap_m: None,
+            ..
+        } => Some(toe_x_m),
+        _ => None,
+    });
+    let (Some(toe_x_m), None, true) = (ramps.next(), ramps.next(), rough) else {
+        return None;
+    };
+    let far = f64::from(v.seen_to_m.left.min(v.seen_to_m.right));
+    let (toe, gradient) = families::surface_toe(terrain, config, toe_x_m.max(0.0), far)?;
+    Some(format!(
+        "the rendered surface's own plane from the drawn toe to {far:.2} m: toe {toe:.3} m, gradient {gradient:.2}°"
+    ))
 }
 
 /// Write scene `i`'s terrain (`i.json`, for `cells`) and configuration (`i.toml`)
