@@ -5575,3 +5575,32 @@ fn a_belly_strip_holding_a_sliver_of_level_ground_beside_a_descent_where_the_vie
         assert_ne!(v.decision, Decision::Go, "{:?}", v.hazards);
     }
 }
+
+#[test]
+fn a_belly_boulder_whose_level_top_the_view_ends_on_is_straddled_and_a_taller_one_never_goes() {
+    // A random rig (`sweep -- natural 100 12213 random 8` #12): a 320×240 camera
+    // 0.73 m high pitched 39° sees a 25 cm boulder under the belly 1.6 m out, and its
+    // image's top edge cuts the boulder's level top 4-8 cm past where it is first
+    // seen whole. Under the clearance, seen to level off: it was `unknown`.
+    let mut c = mounted([0.1138, -0.0420, 0.7304], [1.1514, 39.3365, -8.5087]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.4529;
+    let boulder = |height_m| Element::stone(1.6043, 0.0095, 0.1318, height_m, StoneShape::Boulder);
+    for v in analyse_views(vec![boulder(0.2507)], &c, [None, Some(12_213_012)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert!(v.seen_to_m.centre < 1.8, "{:?}", v.seen_to_m);
+    }
+    // Over the clearance, cut by the image's top edge while still rising, or a block
+    // whose face the view ends on: never go.
+    let block = block_at(1.62, 0.01, 0.25, 0.25, 0.45);
+    for scene in [vec![boulder(0.45)], vec![block]] {
+        for v in analyse_views(scene.clone(), &c, [None, Some(12_213_012)]) {
+            assert_ne!(v.decision, Decision::Go, "{scene:?}");
+            assert!(
+                v.hazards.iter().any(|h| h.side == Side::Centre),
+                "{scene:?}: {:?}",
+                v.hazards
+            );
+        }
+    }
+}

@@ -2,6 +2,7 @@
 //! whose far side is hidden, a climb whose foot lies before the view, a climb that
 //! leaves the view too steep to be a ramp.
 
+use super::belly::belly_top_seen;
 use super::faces::{top_hugs_side, two_levels, FACE_OFF_VOXELS};
 use super::gaps::from_rover_ground;
 use super::{
@@ -405,7 +406,11 @@ fn continues_beside(f: &Frame, surface: &[f32], iy: usize, start: usize, d: isiz
 /// where it rises on past the strip's ground before the cut ([`fronts`]). A low front
 /// (within a wheel radius and [`UNSEEN_FOOT_MARGIN_M`], [`low_step`]) whose top is
 /// seen levelling off, in the strip or in strips of its band beside it, takes no part
-/// ([`top_seen_level`]): the step test judges it.
+/// ([`top_seen_level`]): the step test judges it. Nor does a belly strip whose cut
+/// cells each show what stands there levelling off at a top seen
+/// ([`belly_top_seen`]): the belly test measures that top against the clearance (a
+/// 25 cm boulder whose level top the view ended on was `unknown`, `sweep -- natural
+/// 100 12213 random 8` #12).
 pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let rover = &f.cfg.rover;
     let tan_max = (rover.max_slope_deg as f32).to_radians().tan();
@@ -451,6 +456,14 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .map(|(_, c)| c.top)
                 .fold(f32::NEG_INFINITY, f32::max);
             let rise = top - foot.1;
+            let r = rover.wheel_radius_m as f32;
+            if region == Region::Belly
+                && cut
+                    .clone()
+                    .all(|(ix, _)| belly_top_seen(f, ix, iy, foot.1 + r))
+            {
+                continue; // the belly test measures what its top shows
+            }
             if rise < STEEP_EXIT_SHORT_RISE_M
                 || (low_step(rise, rover)
                     && top_seen_level(f, region, (iy, h), (foot.1, top), tan_max))
