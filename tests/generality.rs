@@ -5604,3 +5604,45 @@ fn a_belly_boulder_whose_level_top_the_view_ends_on_is_straddled_and_a_taller_on
         }
     }
 }
+
+#[test]
+fn the_outermost_strip_s_cells_between_a_coarse_cameras_rows_are_no_drop_off_but_an_edge_is() {
+    // A random rig (`sweep -- families 100 12211 random 2` #71): a 320×240 camera
+    // 0.65 m high pitched 17.7° over a 13.9° descent beyond the right track's inner
+    // edge. At the corridor's end the camera meets the descent at 7-8°, and its rows
+    // cross the outermost strip every 7 cm or so: in the noisy frame its last two
+    // cells got none, and the strip had no strip outside it to see the ground go on.
+    let mut c = mounted([0.0949, -0.0532, 0.6540], [-0.7346, 17.6513, -5.3243]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.3551;
+    let descent = Element::ramp(
+        1.0814,
+        -0.45,
+        -13.8643,
+        0.0,
+        Extent::Band {
+            from_m: -100.0,
+            to_m: -0.2,
+        },
+    );
+    for v in analyse_views(vec![descent.clone()], &c, [None, Some(12_211_071)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert_eq!(v.feature.map(|f| f.workcase), Some(10));
+    }
+    // A real edge there leaves every strip unseen from the edge on.
+    for edge in [2.6, 2.85] {
+        let drop = Element::DropOff {
+            x_m: edge,
+            depth_m: 0.5,
+        };
+        for scene in [vec![drop.clone()], vec![descent.clone(), drop.clone()]] {
+            for v in analyse_views(scene.clone(), &c, [None, Some(12_211_071)]) {
+                assert!(
+                    v.hazards.iter().any(|h| h.kind == HazardKind::DropOff),
+                    "{scene:?}: {:?}",
+                    v.hazards
+                );
+            }
+        }
+    }
+}
