@@ -415,6 +415,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
     let rover = &f.cfg.rover;
     let tan_max = (rover.max_slope_deg as f32).to_radians().tan();
     let wheelbase = rover.wheelbase_m as f32;
+    let r = rover.wheel_radius_m as f32;
     let s = f.spec;
     let found = [Region::Left, Region::Belly, Region::Right].map(|region| {
         let (mut tall, mut over, mut nearest) = (0usize, 0usize, f32::INFINITY);
@@ -456,17 +457,16 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 .map(|(_, c)| c.top)
                 .fold(f32::NEG_INFINITY, f32::max);
             let rise = top - foot.1;
-            let r = rover.wheel_radius_m as f32;
-            if region == Region::Belly
-                && cut
-                    .clone()
-                    .all(|(ix, _)| belly_top_seen(f, ix, iy, foot.1 + r))
-            {
-                continue; // the belly test measures what its top shows
-            }
+            // No unseen front: a short rise, a low front whose top is seen levelling
+            // off (the step test judges it), or a belly strip's top seen levelling
+            // off (the belly test measures it).
             if rise < STEEP_EXIT_SHORT_RISE_M
                 || (low_step(rise, rover)
                     && top_seen_level(f, region, (iy, h), (foot.1, top), tan_max))
+                || (region == Region::Belly
+                    && cut
+                        .clone()
+                        .all(|(ix, _)| belly_top_seen(f, ix, iy, foot.1 + r)))
             {
                 continue;
             }
@@ -685,18 +685,18 @@ fn top_seen_level(
         })
     };
     let inner = |j: usize| inner_strips(f, region).any(|k| k == j);
-    [-1isize, 1].into_iter().any(|d| {
-        let mut j = iy;
-        loop {
-            if plateau(j) {
-                return true;
+    // The strip itself once, then the strips reached from it either way.
+    plateau(iy)
+        || [-1isize, 1].into_iter().any(|d| {
+            let mut j = iy;
+            while let Some(k) = j.checked_add_signed(d).filter(|&k| inner(k) && at_top(k)) {
+                if plateau(k) {
+                    return true;
+                }
+                j = k;
             }
-            match j.checked_add_signed(d).filter(|&k| inner(k) && at_top(k)) {
-                Some(k) => j = k,
-                None => return false,
-            }
-        }
-    })
+            false
+        })
 }
 
 /// Where a strip's view ends (`h`, its first cut cell) on smooth ground, whether the
