@@ -5606,6 +5606,36 @@ fn a_belly_boulder_whose_level_top_the_view_ends_on_is_straddled_and_a_taller_on
 }
 
 #[test]
+fn a_belly_boulder_whose_rounded_shoulder_the_view_ends_on_is_straddled_and_a_taller_one_never_goes(
+) {
+    // A random rig (`sweep -- natural 100 12313 random 8` #38): a camera 0.56 m high
+    // pitched 35.7° and rolled 8.1° sees a 26.4 cm boulder under the belly 1.22 m
+    // out, and the image's top edge ends on its top. On its shoulder, 10.7 cm off its
+    // centre, the cut cell's points span 1.8 cm (the boulder falls away sideways
+    // across the cell), yet none stands higher than the cell seen whole before it:
+    // it was `unknown`.
+    let mut c = mounted([0.0614, -0.0641, 0.5594], [8.1310, 35.6661, 5.3789]);
+    c.camera.min_range_m = 0.4032;
+    let boulder = |height_m| Element::stone(1.2221, 0.0315, 0.1613, height_m, StoneShape::Boulder);
+    for v in analyse_views(vec![boulder(0.2641)], &c, [None, Some(12_313_038)]) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert!(v.seen_to_m.centre < 1.4, "{:?}", v.seen_to_m);
+    }
+    // Over the clearance, or a block whose face the view ends on: never go.
+    let block = block_at(1.22, 0.03, 0.3, 0.3, 0.45);
+    for scene in [vec![boulder(0.45)], vec![block]] {
+        for v in analyse_views(scene.clone(), &c, [None, Some(12_313_038)]) {
+            assert_ne!(v.decision, Decision::Go, "{scene:?}");
+            assert!(
+                v.hazards.iter().any(|h| h.side == Side::Centre),
+                "{scene:?}: {:?}",
+                v.hazards
+            );
+        }
+    }
+}
+
+#[test]
 fn the_outermost_strip_s_cells_between_a_coarse_cameras_rows_are_no_drop_off_but_an_edge_is() {
     // A random rig (`sweep -- families 100 12211 random 2` #71): a 320×240 camera
     // 0.65 m high pitched 17.7° over a 13.9° descent beyond the right track's inner

@@ -213,10 +213,12 @@ fn on_track_surface(f: &Frame, ix: usize, iy: usize, r: f32) -> bool {
 }
 
 /// Whether what stands in belly cell (`ix`, `iy`), past the horizon, shows its top
-/// levelling off before the view ends: the cell is level (its points span rough
-/// ground's spread at most, [`ROUGH_SPREAD_M`]), its top stands less than
-/// [`FRONT_RISING_M`] over the top of the strip's last cell seen whole before it (one
-/// or two cells back: the top no longer rises where the view ends), and one of the
+/// levelling off before the view ends: nothing in the cell rises (its points span
+/// rough ground's spread at most, [`ROUGH_SPREAD_M`], or none stands
+/// [`FRONT_RISING_M`] over the highest point of the strip's last cell seen whole
+/// before it, one or two cells back, as on a rounded top's shoulder, which falls away
+/// across the cell), its top stands less than [`FRONT_RISING_M`] over that cell's top
+/// (the top no longer rises where the view ends), and one of the
 /// two cells seen whole before that one holds ground no higher than `ground` (metres:
 /// a wheel radius over the tracks beside it), so that the front from the ground to
 /// the top is seen. The top is then seen: the belly test measures it against the
@@ -224,12 +226,13 @@ fn on_track_surface(f: &Frame, ix: usize, iy: usize, r: f32) -> bool {
 ///
 /// A 25 cm boulder under the belly 1.6 m out, whose level top the image's top edge
 /// cut 4-8 cm past where it was first seen whole, was `unknown` (`sweep -- natural
-/// 100 12213 random 8` #12, a 320×240 camera 0.73 m high pitched 39°). A wall or a
-/// block whose face the view ends on holds the face in the cut cell (its points span
-/// more than the spread), or ground in the cell before it (the cut cell's top stands
-/// far over it). A gentle ramp under the belly rising out of view a little over a
-/// wheel radius high may pass: what it does past the cut is beyond view, as under
-/// the tracks.
+/// 100 12213 random 8` #12, a 320×240 camera 0.73 m high pitched 39°); so was a
+/// 26.4 cm one whose shoulder's cut cell spans 1.8 cm (`natural 100 12313 random 8`
+/// #38). A wall or a block whose face the view ends on holds the face in the cut
+/// cell (its points span more than the spread and rise over the cell before), or
+/// ground in the cell before it (the cut cell's top stands far over it). A gentle
+/// ramp under the belly rising out of view a little over a wheel radius high may
+/// pass: what it does past the cut is beyond view, as under the tracks.
 pub(super) fn belly_top_seen(f: &Frame, ix: usize, iy: usize, ground: f32) -> bool {
     let s = f.spec;
     let whole = |i: usize| {
@@ -241,7 +244,7 @@ pub(super) fn belly_top_seen(f: &Frame, ix: usize, iy: usize, ground: f32) -> bo
     let Some((i, last)) = before(ix).find_map(|i| whole(i).map(|c| (i, c))) else {
         return false;
     };
-    cut.peak - cut.low <= ROUGH_SPREAD_M
+    (cut.peak - cut.low <= ROUGH_SPREAD_M || cut.peak < last.peak + FRONT_RISING_M)
         && cut.top < last.top + FRONT_RISING_M
         && before(i).filter_map(whole).any(|c| c.low <= ground)
 }
