@@ -5636,6 +5636,58 @@ fn a_belly_boulder_whose_rounded_shoulder_the_view_ends_on_is_straddled_and_a_ta
 }
 
 #[test]
+fn cells_a_belly_rock_s_shadow_edge_crosses_are_no_drop_off_but_a_drop_behind_it_is() {
+    // A random rig (`sweep -- families 100 12309 random 11` #36): a 320×240 camera
+    // 0.63 m high pitched 19.4° sees a 16.5° ramp under the right track and a 24 cm
+    // rock under the belly 2 m out. The rock hides the strip on its left flank to
+    // 2.7 m; the shadow's edge crosses the next three cells, lit at their centres,
+    // and each got two points on the ground: a `drop_off` off the rock's flank.
+    let mut c = mounted([0.2053, 0.0095, 0.6263], [5.4049, 19.3779, 1.0271]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.4717;
+    let ramp = Element::ramp(
+        1.2990,
+        -0.45,
+        16.4940,
+        0.0,
+        Extent::Band {
+            from_m: -0.7,
+            to_m: -0.2,
+        },
+    );
+    let rock = rock(1.9924, -0.0214, 0.1311, 0.2417);
+    for v in analyse_views(
+        vec![ramp.clone(), rock.clone()],
+        &c,
+        [None, Some(12_309_036)],
+    ) {
+        assert_eq!(v.decision, Decision::Go, "{:?}", v.hazards);
+        assert_eq!(v.feature.map(|f| f.workcase), Some(5));
+    }
+    // The ground falling away behind the rock is never a go: across the corridor,
+    // or under the belly band alone.
+    for x_m in [2.5, 2.75] {
+        let drops = [
+            Element::DropOff { x_m, depth_m: 0.5 },
+            Element::Step {
+                x_m,
+                height_m: -0.3,
+                extent: Extent::Band {
+                    from_m: -0.2,
+                    to_m: 0.2,
+                },
+            },
+        ];
+        for drop in drops {
+            let scene = vec![ramp.clone(), rock.clone(), drop];
+            for v in analyse_views(scene.clone(), &c, [None, Some(12_309_036)]) {
+                assert_ne!(v.decision, Decision::Go, "{scene:?}");
+            }
+        }
+    }
+}
+
+#[test]
 fn the_outermost_strip_s_cells_between_a_coarse_cameras_rows_are_no_drop_off_but_an_edge_is() {
     // A random rig (`sweep -- families 100 12211 random 2` #71): a 320×240 camera
     // 0.65 m high pitched 17.7° over a 13.9° descent beyond the right track's inner
