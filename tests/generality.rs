@@ -127,6 +127,25 @@ fn a_trench_under_one_track_is_measured_past_its_walls() {
 }
 
 #[test]
+fn a_capped_descent_s_edge_strip_of_few_cells_beside_its_wall_does_not_tilt_the_face() {
+    // A random rig (`sweep -- families 100 12401 random` #25): a 320×240 camera 0.69 m
+    // high, pitched 29.3°, rolled −3.8° and yawed 5.7°, over a 12.9° descent under the
+    // left track, 12.4 cm deep. In the first window the outermost strip had two
+    // cells, each holding the wall's points on the corridor's edge with the floor's
+    // (16-23 points to the face's 4-9), standing 1 cm over the face: too few cells
+    // to be judged, they tilted the plane, and the fit ran on over the floor past the
+    // face (10.1°, the toe 4.6 cm early).
+    let mut c = mounted([0.0166, -0.0285, 0.6859], [-3.8482, 29.3150, 5.7165]);
+    (c.camera.width, c.camera.height) = (320, 240);
+    c.camera.min_range_m = 0.3197;
+    let (toe, g) = (1.7862, -12.8680);
+    let descent = Element::ramp(toe, 0.45, g, 0.0, LEFT_TRACK).capped(Some(0.1236));
+    let [clean, noisy] = analyse_views(vec![descent], &c, [None, Some(12_401_025)]);
+    assert_go(&clean, 9, toe, g, None);
+    assert_noisy_go(&noisy, 9, toe, g);
+}
+
+#[test]
 fn a_trench_wall_seen_broadside_by_a_rolled_offset_camera_neither_stops_nor_tilts_the_face() {
     // A Kinect v2 0.57 m high, 0.1 m right of the centre line and rolled 7°: the
     // trench's outer wall on the corridor's edge faces it, and in the outermost strip
