@@ -1520,7 +1520,9 @@ fn a_cone_whose_foot_lies_below_the_image_and_whose_far_side_falls_back_is_no_ra
     // analysis reads a top whose far side lies in its shadow at its highest point, it
     // measures the cone's front as a step over a wheel radius and 1 cm above the
     // rover's ground (where the strips' view starts on it): a `step`, clean and
-    // noisy. 9 cm high, go.
+    // noisy; since the face fit's sag test judges edge strips of one or two cells
+    // too, it leaves out those on the cone's flanks, and the 43° front it fits is a
+    // `slope`. Either is the stop due. 9 cm high, go.
     let c = qvga(
         mounted([0.1715, 0.0, 0.6192], [8.3069, 17.4756, 2.6156]),
         0.3777,
@@ -1536,8 +1538,25 @@ fn a_cone_whose_foot_lies_below_the_image_and_whose_far_side_falls_back_is_no_ra
             Element::stone(1.0918, 0.4989, 0.1635, height_m, StoneShape::Cone),
         ]
     };
-    let stop = (Decision::Stop, Side::Left, Some(HazardKind::Step));
-    go_low_not_tall(field, [0.09, 0.1523], &c, 7_820_159, stop);
+    go_low_not_tall(
+        field,
+        [0.09, 0.1523],
+        &c,
+        7_820_159,
+        (Decision::Stop, Side::Left, None),
+    );
+    for v in analyse_views(field(0.1523), &c, [None, Some(7_820_159)]) {
+        let named = |k| {
+            v.hazards
+                .iter()
+                .any(|h| h.side == Side::Left && h.kind == k)
+        };
+        assert!(
+            named(HazardKind::Step) || named(HazardKind::Slope),
+            "{:?}",
+            v.hazards
+        );
+    }
 }
 
 #[test]
