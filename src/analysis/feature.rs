@@ -368,28 +368,35 @@ fn without_sagging_edges(f: &Frame, g: &Ground, sel: &mut Selection) -> Option<P
             if judged < SAG_MIN_OTHER_STRIPS + 1 {
                 break;
             }
-            // The strip judged, and which way its track's edge lies from it.
+            // The strip judged, and which way its track's edge lies from it; each
+            // strip once (the outermost with any cell is most often one of the others).
             let edges = [
                 (first_any, false),
                 (first, false),
                 (last_any, true),
                 (last, true),
             ];
-            let sagging = edges.into_iter().find(|&(iy, _)| {
-                let others = || sel.taken(f).filter(|&(c, _)| s.strip_of(c) != iy);
-                let Some(fit) = fit_cells(g, others, weight) else {
-                    return false;
-                };
-                let (mut rh, mut hh) = (0.0, 0.0);
-                for (c, cell) in sel.taken(f).filter(|&(c, _)| s.strip_of(c) == iy) {
-                    let h = fit.plane.z(f64::from(cell.x), f64::from(cell.y));
-                    rh += g.off(c, cell, &fit.plane) * h;
-                    hh += h * h;
-                }
-                let share = rh / hh.max(1e-12);
-                let se = fit.sigma / hh.max(1e-12).sqrt();
-                share < -SAG_MIN_SHARE && -share > SAG_SES * se
-            });
+            let once = |&(k, (iy, _)): &(usize, (usize, bool))| k % 2 == 0 || iy != edges[k - 1].0;
+            let sagging = edges
+                .into_iter()
+                .enumerate()
+                .filter(once)
+                .map(|(_, e)| e)
+                .find(|&(iy, _)| {
+                    let others = || sel.taken(f).filter(|&(c, _)| s.strip_of(c) != iy);
+                    let Some(fit) = fit_cells(g, others, weight) else {
+                        return false;
+                    };
+                    let (mut rh, mut hh) = (0.0, 0.0);
+                    for (c, cell) in sel.taken(f).filter(|&(c, _)| s.strip_of(c) == iy) {
+                        let h = fit.plane.z(f64::from(cell.x), f64::from(cell.y));
+                        rh += g.off(c, cell, &fit.plane) * h;
+                        hh += h * h;
+                    }
+                    let share = rh / hh.max(1e-12);
+                    let se = fit.sigma / hh.max(1e-12).sqrt();
+                    share < -SAG_MIN_SHARE && -share > SAG_SES * se
+                });
             let Some((iy, outward_up)) = sagging else {
                 break;
             };
