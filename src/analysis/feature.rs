@@ -127,7 +127,7 @@ impl Face {
             spread.add(f64::from(g.z[c]) - on_plane);
             let (ix, iy) = (c / s.ny, c % s.ny);
             let beyond = (ix + VIEW_END_CELLS + 1..s.nx).map(|k| s.cell(k, iy));
-            if !beyond.clone().any(|k| f.seen[k] && !f.past[k]) {
+            if !beyond.clone().any(|k| f.seen_whole(k)) {
                 to_view_end = true;
                 if (ix + 1..s.nx).any(|k| f.past[s.cell(k, iy)]) {
                     horizon = true;
@@ -1103,7 +1103,7 @@ fn climb_into_cut(f: &Frame, z: &[f32], iy: usize, from: usize, base: f32) -> Op
     let s = f.spec;
     let below = |ix: usize| {
         let c = s.cell(ix, iy);
-        f.seen[c] && !f.past[c]
+        f.seen_whole(c)
     };
     let h = first_cut(f, iy, from + 1)?;
     if !below(h - 1) {
@@ -1156,7 +1156,7 @@ fn strip_relief(f: &Frame, iy: usize, from: usize, base: f32, dir: Dir) -> f32 {
     let mut relief = 0.0f32;
     for ix in from..s.nx {
         let c = s.cell(ix, iy);
-        if f.seen[c] && !f.past[c] {
+        if f.seen_whole(c) {
             let cell = &f.cells[c];
             relief = relief.max(match dir {
                 Dir::Up if f.shadow_past(ix, iy) => cell.top.max(cell.peak) - base,
@@ -1191,7 +1191,7 @@ fn stones_fall_back(f: &Frame, z: &[f32], onset: &[Option<Onset>], a: Affected) 
         let (mut high, mut back) = (f32::NEG_INFINITY, false);
         for c in (from..s.nx)
             .map(|ix| s.cell(ix, iy))
-            .filter(|&c| f.seen[c] && !f.past[c])
+            .filter(|&c| f.seen_whole(c))
         {
             if z[c] > high {
                 (high, back) = (z[c], false);
@@ -1241,7 +1241,7 @@ fn ground_before(f: &Frame, z: &[f32], iy: usize, ix: usize) -> f32 {
     let reach = (GROUND_BEFORE_M / s.voxel_m).round() as usize;
     let (sum, n) = (ix.saturating_sub(reach)..ix)
         .map(|k| s.cell(k, iy))
-        .filter(|&c| f.seen[c] && !f.past[c])
+        .filter(|&c| f.seen_whole(c))
         .fold((0.0f32, 0u32), |(sum, n), c| (sum + z[c], n + 1));
     if n == 0 {
         0.0

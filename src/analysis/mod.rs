@@ -177,6 +177,13 @@ impl<'a> Frame<'a> {
         }
     }
 
+    /// Whether cell `c` is seen whole: seen, and short of the sensor's horizon (past
+    /// it, what is seen is only the part under the image's top edge or inside the
+    /// range, and its height a bound).
+    pub fn seen_whole(&self, c: usize) -> bool {
+        self.seen[c] && !self.past[c]
+    }
+
     /// Strips (iy) of one region, in order: one run (see [`strip_runs`]).
     pub fn strips(&self, r: Region) -> std::ops::Range<usize> {
         self.strip_runs[r as usize].clone()

@@ -24,7 +24,7 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
     let r = f.cfg.rover.wheel_radius_m as f32;
     let s = f.spec;
     track_medians(f, values, track_ref, |c| {
-        (f.seen[c] && !f.past[c]).then(|| f.cells[c].z)
+        f.seen_whole(c).then(|| f.cells[c].z)
     });
     let tc = f.cfg.rover.track_centre_m() as f32;
     for ix in 0..s.nx {
@@ -49,7 +49,7 @@ pub fn belly(f: &Frame, values: &mut Vec<f32>, track_ref: &mut [[f32; 2]], verdi
         let floor = f
             .strips(Region::Belly)
             .map(|iy| s.cell(ix, iy))
-            .filter(|&c| f.seen[c] && !f.past[c])
+            .filter(|&c| f.seen_whole(c))
             .map(|c| f.cells[c].z)
             .reduce(f32::min)
             .unwrap_or(f32::NEG_INFINITY);
@@ -200,7 +200,7 @@ fn on_track_surface(f: &Frame, ix: usize, iy: usize, r: f32) -> bool {
         (0..s.ny)
             .filter(move |&j| f.region[j] == side)
             .map(move |j| (j, s.cell(ix, j)))
-            .filter(|&(_, c)| f.seen[c] && !f.past[c])
+            .filter(|&(_, c)| f.seen_whole(c))
             .map(|(j, c)| (s.y_centre(j), f.cells[c].z))
     };
     if across().count() < CROSS_MIN_CELLS {
@@ -237,7 +237,7 @@ pub(super) fn belly_top_seen(f: &Frame, ix: usize, iy: usize, ground: f32) -> bo
     let s = f.spec;
     let whole = |i: usize| {
         let c = s.cell(i, iy);
-        (f.seen[c] && !f.past[c]).then_some(&f.cells[c])
+        f.seen_whole(c).then_some(&f.cells[c])
     };
     let before = |i: usize| (1..=2).filter_map(move |d| i.checked_sub(d));
     let cut = &f.cells[s.cell(ix, iy)];

@@ -724,7 +724,7 @@ fn ground_beside(f: &Frame, ix: usize, iy: usize, least: f32) -> Option<f32> {
     let s = f.spec;
     let seen_at = |jy: usize| {
         let c = s.cell(ix, jy);
-        (f.seen[c] && !f.past[c]).then(|| (s.y_centre(jy), f.cells[c].z))
+        f.seen_whole(c).then(|| (s.y_centre(jy), f.cells[c].z))
     };
     let side = |up: bool| {
         beside(iy, s.ny, up, BESIDE_STRIPS)
@@ -863,7 +863,7 @@ fn ground_goes_on(f: &Frame, iy: usize, last: usize, (k, z, x): (f32, f32, f32))
     (0..s.ny).filter(|&jy| jy != iy).any(|jy| {
         let c = s.cell(last, jy);
         let cell = &f.cells[c];
-        f.seen[c] && !f.past[c] && (cell.z - (z + k * (cell.x - x))).abs() <= r
+        f.seen_whole(c) && (cell.z - (z + k * (cell.x - x))).abs() <= r
     })
 }
 
@@ -882,7 +882,7 @@ fn patch_roughness(f: &Frame, iy: usize, start: usize) -> f32 {
         .filter(|&jy| f.region[jy] == f.region[iy]);
     let cells = rows
         .flat_map(|ix| strips.clone().map(move |jy| s.cell(ix, jy)))
-        .filter(|&c| f.seen[c] && !f.past[c] && f.cells[c].crest == f.cells[c].foot)
+        .filter(|&c| f.seen_whole(c) && f.cells[c].crest == f.cells[c].foot)
         .map(|c| (f.cells[c].x, f.cells[c].y, f.cells[c].z));
     match plane_fit(cells) {
         Some((_, rms, n)) if n >= PATCH_MIN_CELLS => rms as f32,

@@ -429,7 +429,7 @@ pub fn steep_exit(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 let z = if region == Region::Belly {
                     let cell = &f.cells[c];
                     let z = if two_levels(cell) { cell.top } else { cell.z };
-                    (f.seen[c] && !f.past[c]).then_some(z)
+                    f.seen_whole(c).then_some(z)
                 } else {
                     followed(f, surface, c)
                 };
@@ -622,7 +622,7 @@ fn top_beside(f: &Frame, iy: usize, h: usize, cell: &Cell) -> bool {
         .filter(|&j| j < s.ny)
         .zip(h.checked_sub(1))
         .map(|(j, ix)| s.cell(ix, j))
-        .is_some_and(|c| f.seen[c] && !f.past[c] && cell.top <= f.cells[c].z + ROUGH_SPREAD_M)
+        .is_some_and(|c| f.seen_whole(c) && cell.top <= f.cells[c].z + ROUGH_SPREAD_M)
 }
 
 /// Least run along a strip between the two level cells that show a front's top

@@ -385,7 +385,7 @@ fn slope_goes_on(f: &Frame, ix: usize, iy: usize, cross: f32) -> Option<f32> {
         Some(iy + 1).filter(|&j| j < f.spec.ny)?
     };
     let c = f.spec.cell(ix, other);
-    let beyond = (f.seen[c] && !f.past[c]).then_some(f.cells[c].z)?;
+    let beyond = f.seen_whole(c).then_some(f.cells[c].z)?;
     ((beyond - z) * (z - cell.z) >= 0.0).then_some(z)
 }
 
@@ -562,7 +562,7 @@ fn wheel_on(f: &Frame, iy: usize, cell: &StripCell, r: f32) -> f32 {
     let reach = (r / s.voxel_m).ceil() as usize;
     (cell.ix.saturating_sub(reach)..(cell.ix + reach + 1).min(s.nx))
         .map(|ix| s.cell(ix, iy))
-        .filter(|&c| f.seen[c] && !f.past[c])
+        .filter(|&c| f.seen_whole(c))
         .filter_map(|c| on_rim(f.cells[c].z, (f.cells[c].x - cell.x).abs(), r))
         .fold(f32::NEG_INFINITY, f32::max)
 }
@@ -660,7 +660,7 @@ fn unknown_judged(verdict: &Verdict, side: Side, x: f32) -> bool {
 /// The ground the strip followed in cell `c` (`surface`, from [`steps_and_slopes`]),
 /// metres, when the cell is seen whole: not past the horizon, and in a track.
 fn followed(f: &Frame, surface: &[f32], c: usize) -> Option<f32> {
-    (f.seen[c] && !f.past[c])
+    f.seen_whole(c)
         .then_some(surface[c])
         .filter(|z| z.is_finite())
 }
