@@ -4014,6 +4014,67 @@ fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_s
 }
 
 #[test]
+fn a_ramp_s_cut_cell_whose_noisy_points_merely_spread_is_no_face_but_a_step_there_is() {
+    // A ramp under each track, their sides drawn sloping, seen by a Kinect v1 0.99 m
+    // high, pitched 29.9° and rolled −6.8° (`sweep -- bevelled 100 12412 random 9`
+    // #82). The left one, 22.9° from 1.58 m, rises out of the image's top at 2.87 m.
+    // With noise, the cut cell of its innermost inner strip holds points spanning
+    // 7.5 cm, a hair over the two surface bands' reach: its crest and foot, each
+    // leaving out one fringe voxel, stood 7 mm apart and 1 mm apart along and across
+    // the strip. Read as a face across the strip over the ramp's 26 cm rise from its
+    // foot a wheelbase back, it made the track `unknown`. Two surfaces within rough
+    // ground's spread of each other are one surface, its points merely spread, as
+    // the clean frame reads them: a go, measured on the right ramp (workcase 5).
+    let mut c = mounted(
+        [0.028_826_896, 0.006_018_746, 0.990_133_388],
+        [-6.785_610_933, 29.908_181_151, 1.721_658_272],
+    );
+    c.camera.min_range_m = 0.437_830_650;
+    let (toe_r, g_r) = (1.208_901_833, 20.596_718_240);
+    let left = Extent::Bevelled {
+        from_m: 0.2,
+        to_m: 0.7,
+        side_m: 0.125_490_404,
+    };
+    let right = Extent::Bevelled {
+        from_m: -0.7,
+        to_m: -0.2,
+        side_m: 0.020_546_044,
+    };
+    let ramps = |g_l| {
+        vec![
+            Element::ramp(toe_r, -0.45, g_r, 0.0, right),
+            Element::ramp(1.579_253_275, 0.45, g_l, 0.0, left),
+        ]
+    };
+    let [clean, noisy] = analyse_views(ramps(22.879_138_052), &c, [None, Some(12_412_082)]);
+    assert_go(&clean, 5, toe_r, g_r, None);
+    assert_noisy_go(&noisy, 5, toe_r, g_r);
+    // A 15 cm step up the left ramp seen before the view ends on it (2.7-2.8 m; at
+    // 2.85 m the image's top edge shows 1-2 cm of its face), or the left ramp too
+    // steep: never go, clean or noisy.
+    let stepped = |x_m| {
+        let mut scene = ramps(22.879_138_052);
+        scene.push(Element::Step {
+            x_m,
+            height_m: 0.15,
+            extent: left,
+        });
+        scene
+    };
+    for scene in [stepped(2.7), stepped(2.75), stepped(2.8), ramps(34.0)] {
+        for v in analyse_views(scene, &c, [None, Some(12_412_082)]) {
+            assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+            assert!(
+                v.hazards.iter().any(|h| h.side == Side::Left),
+                "{:?}",
+                v.hazards
+            );
+        }
+    }
+}
+
+#[test]
 fn an_outer_edge_strip_climbing_a_sloping_side_under_the_track_is_go_but_a_post_there_stops() {
     // A ramp under each track, their sides drawn sloping over 8.7-9.7 cm, seen by a
     // Kinect v2 1.19 m high pitched 42° (`sweep -- bevelled 100 10312 random 9` #75,

@@ -555,9 +555,13 @@ const CUT_CELLS: usize = 3;
 /// [`STEEP_EXIT_RISE_M`] in 5 cm (steeper than 45°), its upper surface beyond its
 /// lower one more than beside it, unlike a ramp's side face along the strip. `spread`:
 /// a cell whose points span as much but whose two surfaces depth noise has merged
-/// (`crest` and `foot` both the mean), so it has no orientation of its own; its
-/// points not hugging one side of the cell, it is not along the strip (counted only
-/// where most of the band shows a front).
+/// (`crest` and `foot` within rough ground's spread, [`ROUGH_SPREAD_M`], of each
+/// other), so it has no orientation of its own; its points not hugging one side of
+/// the cell, it is not along the strip (counted only where most of the band shows a
+/// front). Merged surfaces need not be one mean: a noisy ramp's cell whose points
+/// span a hair over the surface bands' reach leaves one fringe voxel out of each,
+/// and its crest and foot stood 7 mm and 1 mm apart, an orientation drawn by noise
+/// (`sweep -- bevelled 100 12412 random 9` #82, noisy: `unknown` on a 22.9° ramp).
 ///
 /// Either cell's top must stand [`STEEP_EXIT_SHORT_RISE_M`] over the climb's `foot`
 /// (metres) and rise on past the strip's ground before the cut (`before`, from
@@ -588,9 +592,9 @@ fn fronts<'c>(
     cut.filter(|(_, c)| c.top - c.low >= STEEP_EXIT_RISE_M && rises(c))
         .fold((false, false), |(face, spread), (_, c)| {
             let (dx, dy) = (c.crest_xy[0] - c.foot_xy[0], c.crest_xy[1] - c.foot_xy[1]);
-            let merged =
-                c.crest_xy == c.foot_xy && (c.y - y_mid).abs() < FACE_OFF_VOXELS * f.spec.voxel_m;
-            (face || dx > dy.abs(), spread || merged)
+            let apart = c.crest - c.foot >= ROUGH_SPREAD_M;
+            let merged = !apart && (c.y - y_mid).abs() < FACE_OFF_VOXELS * f.spec.voxel_m;
+            (face || (apart && dx > dy.abs()), spread || merged)
         })
 }
 
