@@ -5652,13 +5652,50 @@ fn a_belly_strip_holding_a_sliver_of_level_ground_beside_a_descent_where_the_vie
         to_m: 0.748_509_989,
     };
     let descent = Element::ramp(1.536_455_345, 0.45, -8.560_934_443, 0.0, band);
-    let views = [None, Some(11_807_054)];
-    for v in analyse_views(vec![descent.clone().capped(Some(0.243_725_475))], &c, views) {
-        assert_noisy_go(&v, 9, 1.5365, -8.5609);
+    let sliver = (descent.capped(Some(0.243_725_475)), [1.5365, -8.5609]);
+    sliver_beside_descent_goes_and_wall_stops(&c, sliver, (9, 11_807_054), [2.7]);
+    // A 320×240 camera 0.91 m high, rolled −6.7° and pitched 43°, over a 9° descent
+    // under the right track from 1.58 m, drawn 15 cm into the belly band, capped
+    // 0.22 m down (`sweep -- widened 100 12607 random 3` #16, clean). Its side face
+    // lies 3 mm inside a belly strip; where the image's top edge cuts that strip,
+    // 2.73 m out, its cell holds the sliver's points at the level, and the strip
+    // beside, on the level side, saw the level to one row before (the image's edge
+    // crosses the corridor obliquely), not in the row before: `unknown`.
+    let c = qvga(
+        mounted(
+            [0.252_965_054, 0.097_111_862, 0.909_987_943],
+            [-6.707_986_936, 43.075_208_293, 6.596_663_578],
+        ),
+        0.315_538_150,
+    );
+    let band = Extent::Band {
+        from_m: -0.731_562_447,
+        to_m: -0.053_233_542,
+    };
+    let descent = Element::ramp(1.577_454_891, -0.45, -8.999_097_877, 0.0, band);
+    let sliver = (descent.capped(Some(0.215_567_753)), [1.5775, -8.9991]);
+    sliver_beside_descent_goes_and_wall_stops(&c, sliver, (10, 12_607_016), [2.5, 2.6, 2.7]);
+}
+
+/// Asserts that `descent`, one track's descent drawn into the belly band, seen by `c`
+/// clean and with noise seeded `noise_seed`, goes with workcase `wc`, its toe and
+/// gradient `[toe, g]` (metres, degrees) within the noisy bars, and that a wall across
+/// the corridor `walls_m` out (metres) beyond it never goes.
+fn sliver_beside_descent_goes_and_wall_stops<const N: usize>(
+    c: &Config,
+    (descent, [toe, g]): (Element, [f64; 2]),
+    (wc, noise_seed): (u8, u64),
+    walls_m: [f64; N],
+) {
+    let views = [None, Some(noise_seed)];
+    for v in analyse_views(vec![descent.clone()], c, views) {
+        assert_noisy_go(&v, wc, toe, g);
     }
-    let wall = Element::ramp(2.7, 0.0, 85.0, 0.0, Extent::Full).capped(Some(0.5));
-    for v in analyse_views(vec![descent, wall], &c, views) {
-        assert_ne!(v.decision, Decision::Go, "{:?}", v.hazards);
+    for x_m in walls_m {
+        let wall = Element::ramp(x_m, 0.0, 85.0, 0.0, Extent::Full).capped(Some(0.5));
+        for v in analyse_views(vec![descent.clone(), wall], c, views) {
+            assert_ne!(v.decision, Decision::Go, "{x_m} {:?}", v.hazards);
+        }
     }
 }
 

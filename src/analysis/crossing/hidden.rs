@@ -602,7 +602,10 @@ fn fronts<'c>(
 /// ground beside the strip, not a front across it: its top voxel hugs the strip's
 /// side ([`top_hugs_side`]), and the strip on that side, seen
 /// in the row before the view ends (row `h − 1`, not past the horizon), stands no
-/// lower there than that top less rough ground's spread ([`ROUGH_SPREAD_M`]). A face
+/// lower there than that top less rough ground's spread ([`ROUGH_SPREAD_M`]). Where
+/// that strip's own view ends a row earlier (a rolled camera's image edge crosses the
+/// corridor obliquely), its row before that is read: the last of [`BESIDE_ROWS`] rows
+/// before `h` short of its horizon. A face
 /// along the strip lies inside it, the higher ground beside on one side; where the
 /// view ends, the cut cell may hold that ground's few points and none of the lower
 /// ground's, and the strip "rose" to it. A one-track descent drawn 9 cm into the
@@ -610,7 +613,11 @@ fn fronts<'c>(
 /// out, the cut cell held two of its points over the descent's 15 cm down, and the
 /// strip was `unknown` (`sweep -- widened 100 11807 random 3` #54, noisy). The
 /// strip beside must see that level before the cut: a front across the corridor
-/// rises there too, and is still judged.
+/// rises there too, and is still judged. A 9° descent drawn 15 cm into the belly
+/// band, its side face 3 mm inside a belly strip, seen by a 320×240 camera rolled
+/// −6.7°: the strip beside, on the level side, saw that level to one row before the
+/// strip's last, and the strip was `unknown` (`sweep -- widened 100 12607 random 3`
+/// #16, clean).
 fn top_beside(f: &Frame, iy: usize, h: usize, cell: &Cell) -> bool {
     let s = f.spec;
     let y_mid = s.y_centre(iy);
@@ -622,12 +629,19 @@ fn top_beside(f: &Frame, iy: usize, h: usize, cell: &Cell) -> bool {
     } else {
         iy.checked_sub(1)
     };
-    toward
-        .filter(|&j| j < s.ny)
-        .zip(h.checked_sub(1))
-        .map(|(j, ix)| s.cell(ix, j))
-        .is_some_and(|c| f.seen_whole(c) && cell.top <= f.cells[c].z + ROUGH_SPREAD_M)
+    let beside = toward.filter(|&j| j < s.ny).and_then(|j| {
+        (h.saturating_sub(BESIDE_ROWS)..h)
+            .rev()
+            .map(|ix| s.cell(ix, j))
+            .find(|&c| !f.past[c])
+    });
+    beside.is_some_and(|c| f.seen_whole(c) && cell.top <= f.cells[c].z + ROUGH_SPREAD_M)
 }
+
+/// How many rows before a strip's view ends [`top_beside`] reads the strip beside in:
+/// its row before, or, where the strip beside's own view ended there, the row before
+/// that (10 cm at the default voxel).
+const BESIDE_ROWS: usize = 2;
 
 /// Least run along a strip between the two level cells that show a front's top
 /// seen ([`top_seen_level`]), in voxels: half a cell.
