@@ -4014,6 +4014,51 @@ fn two_ramps_whose_narrow_sloping_sides_the_edge_strips_read_are_go_and_a_step_s
 }
 
 #[test]
+fn rough_ground_that_steepens_past_a_crest_where_the_view_ends_is_no_front_but_a_step_there_is() {
+    // A 320×240 camera 0.77 m high, pitched 32.4°, over a 20.9° ramp across the
+    // corridor on rough ground correlated over 10 cm (`sweep -- families 100 12601
+    // random` #38, clean). In two neighbouring strips of the left track the three cells
+    // before the image's top edge lie within 1 mm of a 16° line and the three before
+    // them on a 24° one: the rough ground's own relief, a crest. Taken for a toe's
+    // bend, the nearer line carried on under the cut cell, 2.3 cm below its top: a
+    // front bending up where the view ends, `unknown`. A toe's bend steepens toward
+    // the front; this ground flattened. Go, measured within rough ground's bars.
+    let c = qvga(
+        mounted(
+            [0.183_249_507, -0.001_879_085, 0.769_078_939],
+            [1.554_158_667, 32.403_649_322, -3.566_823_898],
+        ),
+        0.303_877_723,
+    );
+    let (toe, g) = (1.740_020_917, 20.888_346_922);
+    let ramp = |g| {
+        vec![
+            rough(0.102_079_658, 15_043_562_753_556_875_588),
+            Element::ramp(toe, 0.0, g, 0.0, Extent::Full),
+        ]
+    };
+    for v in analyse_views(ramp(g), &c, [None, Some(12_601_038)]) {
+        assert_rough_go(&v, 2, toe, g);
+    }
+    // A 15 cm step up the ramp seen before the view ends (2.3-2.4 m), or the ramp at
+    // 34°: never go, clean or noisy.
+    let stepped = |x_m| {
+        let mut scene = ramp(g);
+        scene.push(Element::Step {
+            x_m,
+            height_m: 0.15,
+            extent: Extent::Full,
+        });
+        scene
+    };
+    for scene in [stepped(2.3), stepped(2.4), ramp(34.0)] {
+        for v in analyse_views(scene, &c, [None, Some(12_601_038)]) {
+            assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+        }
+    }
+}
+
+#[test]
 fn a_ramp_s_cut_cell_whose_noisy_points_merely_spread_is_no_face_but_a_step_there_is() {
     // A ramp under each track, their sides drawn sloping, seen by a Kinect v1 0.99 m
     // high, pitched 29.9° and rolled −6.8° (`sweep -- bevelled 100 12412 random 9`
