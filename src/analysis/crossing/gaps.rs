@@ -87,13 +87,13 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                 let mut judged = false;
                 if let Some((start, len)) = run.take() {
                     // Right after a shadow, cells holding a few points on the ground
-                    // the run ends at: the shadow's edge, judged as the shadow.
-                    let edge = || {
-                        shade_from.is_some()
-                            && seen_here
-                            && c.is_some_and(|c| shadow_edge(f, iy, start..ix, ground(c).1))
-                    };
-                    if len >= min_run && !edge() {
+                    // the run ends at: the shadow's edge, judged as the shadow (asked
+                    // only of a run long enough to be judged).
+                    let after_shadow = shade_from.is_some() && seen_here;
+                    if len >= min_run
+                        && !(after_shadow
+                            && c.is_some_and(|c| shadow_edge(f, iy, start..ix, ground(c).1)))
+                    {
                         judged = true;
                         let after = c.filter(|_| seen_here || range_end).map(|c| {
                             let (x, z) = ground(c);
