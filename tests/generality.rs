@@ -4262,6 +4262,55 @@ fn a_ramp_cell_past_the_inner_strips_horizon_is_no_step_in_the_edge_strip() {
 }
 
 #[test]
+fn an_edge_strip_cell_past_the_horizon_level_with_the_inner_strip_is_no_step_but_one_there_is() {
+    // A 15.9° ramp under the right track, its inner side sloping over 4.7 cm, seen by
+    // a Kinect v2 0.71 m high, pitched 31.2° and rolled 7.8° (`sweep -- bevelled 100
+    // 12706 random 0` #34). The track's inner edge strip holds the side: its cells
+    // read the side's mean, 12 cm under the ramp's top, and its cell 2.89 m out, past
+    // the horizon, only the top, 0.61 m up, within a centimetre of the inner strip's
+    // own reading past its horizon there. The inner strip's wheel abreast rests only
+    // on cells seen whole, 2 cm lower: the rise was no face along the band's edge but
+    // a `step` (clean). A reading past the horizon is its own wheel, and the inner
+    // strip's reading there, a bound of the same kind, vouches for it.
+    let mut c = kinect_v2(mounted(
+        [0.140_241_271, -0.042_052_162, 0.713_786_500],
+        [7.818_705_934, 31.184_204_529, 2.974_167_689],
+    ));
+    c.camera.min_range_m = 0.397_788_947;
+    let (toe, g) = (0.716_993_378, 15.883_193_573);
+    let side = Extent::Bevelled {
+        from_m: -0.7,
+        to_m: -0.2,
+        side_m: 0.047_317_902,
+    };
+    let ramp = |g| vec![Element::ramp(toe, -0.45, g, 2.852_059_012, side)];
+    let [clean, noisy] = analyse_views(ramp(g), &c, [None, Some(12_706_034)]);
+    assert_go(&clean, 5, toe, g, None);
+    assert_noisy_go(&noisy, 5, toe, g);
+    // A 15 cm step up the ramp before the view ends on it, or the ramp too steep:
+    // never go, clean or noisy.
+    let stepped = |x_m| {
+        let mut scene = ramp(g);
+        scene.push(Element::Step {
+            x_m,
+            height_m: 0.15,
+            extent: side,
+        });
+        scene
+    };
+    for scene in [stepped(2.4), stepped(2.55), stepped(2.7), ramp(34.0)] {
+        for v in analyse_views(scene, &c, [None, Some(12_706_034)]) {
+            assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+            assert!(
+                v.hazards.iter().any(|h| h.side == Side::Right),
+                "{:?}",
+                v.hazards
+            );
+        }
+    }
+}
+
+#[test]
 fn ground_falling_away_beside_a_track_over_a_sloping_edge_is_go_and_a_drop_beyond_stops() {
     // Ground falling away beyond a track's inner edge, the edge drawn sloping over
     // 10-13 cm (`Extent::Bevelled`): the belly band's edge strip holds the slope's
