@@ -95,28 +95,11 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
                             && c.is_some_and(|c| shadow_edge(f, iy, start..ix, ground(c).1)))
                     {
                         judged = true;
-                        let after = c.filter(|_| seen_here || range_end).map(|c| {
-                            let (x, z) = ground(c);
-                            // Past the horizon the cell shows only what lies under
-                            // the image's top edge: of a face rising out of it (a
-                            // pit's far wall), its lower part. The ground at its foot
-                            // lies at or under its lowest surface.
-                            (x, if f.past[c] { z.min(f.cells[c].low) } else { z })
-                        });
-                        let kind = if before.last().is_none()
-                            && seen_here
-                            && below_view(f, iy, start, ix, ground, tan_max)
+                        let end = (c.filter(|_| seen_here || range_end), seen_here);
+                        let limits = (r, tan_max);
+                        if let Some(kind) =
+                            judge_run(f, iy, (start, ix), end, before, ground, limits)
                         {
-                            None
-                        } else {
-                            // The ground past the gap, seen whole, as one line.
-                            let landing = seen_here
-                                .then(|| line_past(f, iy, ix, ground, LANDING_M, true))
-                                .flatten();
-                            let after = after.map(|at| (at, landing));
-                            judge_gap(f, iy, start, ix, before, after, r, tan_max)
-                        };
-                        if let Some(kind) = kind {
                             verdict.add_hazard(Hazard {
                                 kind,
                                 side,
@@ -164,6 +147,39 @@ pub fn gaps(f: &Frame, surface: &[f32], verdict: &mut Verdict) {
             });
         }
     }
+}
+
+/// What unseen run `start..end` of strip `iy` is ([`gaps`]): `end_cell`, the cell
+/// that ends it (seen whole when `seen_here`, else one the far range limit cuts; `None`
+/// at the corridor's end), against `before`, the ground seen before it, each cell's
+/// height `ground`'s; `r` the wheel radius (metres) and `tan_max` the slope limit.
+/// Below the image's bottom edge, ground the view starts past is no gap. `None`: no
+/// hazard.
+fn judge_run(
+    f: &Frame,
+    iy: usize,
+    (start, end): (usize, usize),
+    (end_cell, seen_here): (Option<usize>, bool),
+    before: Recent,
+    ground: impl Fn(usize) -> (f32, f32) + Copy,
+    (r, tan_max): (f32, f32),
+) -> Option<HazardKind> {
+    if before.last().is_none() && seen_here && below_view(f, iy, start, end, ground, tan_max) {
+        return None;
+    }
+    let after = end_cell.map(|c| {
+        let (x, z) = ground(c);
+        // Past the horizon the cell shows only what lies under the image's top edge:
+        // of a face rising out of it (a pit's far wall), its lower part. The ground at
+        // its foot lies at or under its lowest surface.
+        (x, if f.past[c] { z.min(f.cells[c].low) } else { z })
+    });
+    // The ground past the gap, seen whole, as one line.
+    let landing = seen_here
+        .then(|| line_past(f, iy, end, ground, LANDING_M, true))
+        .flatten();
+    let after = after.map(|at| (at, landing));
+    judge_gap(f, iy, start, end, before, after, r, tan_max)
 }
 
 /// Whether unseen run `run` of strip `iy`, which follows a shadow, is that shadow's
