@@ -619,6 +619,36 @@ fn lumpy(spacing_m: f64, seed: u64) -> Element {
     }
 }
 
+/// `scene` with a 15 cm step up at `x_m` metres across `extent`: a step up a ramp.
+fn with_step(mut scene: Vec<Element>, x_m: f64, extent: Extent) -> Vec<Element> {
+    scene.push(Element::Step {
+        x_m,
+        height_m: 0.15,
+        extent,
+    });
+    scene
+}
+
+/// Each of `scenes`, seen by rig `c` clean and with noise `noise_seed`, is never a go;
+/// with `side`, it has a hazard on that side.
+fn never_goes<const N: usize>(
+    scenes: [Vec<Element>; N],
+    c: &Config,
+    noise_seed: u64,
+    side: Option<Side>,
+) {
+    for scene in scenes {
+        for v in analyse_views(scene, c, [None, Some(noise_seed)]) {
+            assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
+            assert!(
+                side.is_none_or(|side| v.hazards.iter().any(|h| h.side == side)),
+                "{:?}",
+                v.hazards
+            );
+        }
+    }
+}
+
 /// The default config with the camera at `[x, y, z]` (metres) turned by `[roll,
 /// pitch, yaw]` (degrees).
 fn mounted([x, y, z]: [f64; 3], [roll, pitch, yaw]: [f64; 3]) -> Config {
@@ -4042,20 +4072,13 @@ fn rough_ground_that_steepens_past_a_crest_where_the_view_ends_is_no_front_but_a
     }
     // A 15 cm step up the ramp seen before the view ends (2.3-2.4 m), or the ramp at
     // 34°: never go, clean or noisy.
-    let stepped = |x_m| {
-        let mut scene = ramp(g);
-        scene.push(Element::Step {
-            x_m,
-            height_m: 0.15,
-            extent: Extent::Full,
-        });
-        scene
-    };
-    for scene in [stepped(2.3), stepped(2.4), ramp(34.0)] {
-        for v in analyse_views(scene, &c, [None, Some(12_601_038)]) {
-            assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-        }
-    }
+    let stepped = |x_m| with_step(ramp(g), x_m, Extent::Full);
+    never_goes(
+        [stepped(2.3), stepped(2.4), ramp(34.0)],
+        &c,
+        12_601_038,
+        None,
+    );
 }
 
 #[test]
@@ -4098,25 +4121,9 @@ fn a_ramp_s_cut_cell_whose_noisy_points_merely_spread_is_no_face_but_a_step_ther
     // A 15 cm step up the left ramp seen before the view ends on it (2.7-2.8 m; at
     // 2.85 m the image's top edge shows 1-2 cm of its face), or the left ramp too
     // steep: never go, clean or noisy.
-    let stepped = |x_m| {
-        let mut scene = ramps(22.879_138_052);
-        scene.push(Element::Step {
-            x_m,
-            height_m: 0.15,
-            extent: left,
-        });
-        scene
-    };
-    for scene in [stepped(2.7), stepped(2.75), stepped(2.8), ramps(34.0)] {
-        for v in analyse_views(scene, &c, [None, Some(12_412_082)]) {
-            assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-            assert!(
-                v.hazards.iter().any(|h| h.side == Side::Left),
-                "{:?}",
-                v.hazards
-            );
-        }
-    }
+    let stepped = |x_m| with_step(ramps(22.879_138_052), x_m, left);
+    let scenes = [stepped(2.7), stepped(2.75), stepped(2.8), ramps(34.0)];
+    never_goes(scenes, &c, 12_412_082, Some(Side::Left));
 }
 
 #[test]
@@ -4289,25 +4296,9 @@ fn an_edge_strip_cell_past_the_horizon_level_with_the_inner_strip_is_no_step_but
     assert_noisy_go(&noisy, 5, toe, g);
     // A 15 cm step up the ramp before the view ends on it, or the ramp too steep:
     // never go, clean or noisy.
-    let stepped = |x_m| {
-        let mut scene = ramp(g);
-        scene.push(Element::Step {
-            x_m,
-            height_m: 0.15,
-            extent: side,
-        });
-        scene
-    };
-    for scene in [stepped(2.4), stepped(2.55), stepped(2.7), ramp(34.0)] {
-        for v in analyse_views(scene, &c, [None, Some(12_706_034)]) {
-            assert_ne!(v.decision, Decision::Go, "{:?}", v.feature);
-            assert!(
-                v.hazards.iter().any(|h| h.side == Side::Right),
-                "{:?}",
-                v.hazards
-            );
-        }
-    }
+    let stepped = |x_m| with_step(ramp(g), x_m, side);
+    let scenes = [stepped(2.4), stepped(2.55), stepped(2.7), ramp(34.0)];
+    never_goes(scenes, &c, 12_706_034, Some(Side::Right));
 }
 
 #[test]
