@@ -5843,6 +5843,21 @@ fn a_belly_boulder_whose_rounded_shoulder_the_view_ends_on_is_straddled_and_a_ta
 }
 
 #[test]
+fn a_belly_rock_whose_top_the_view_ends_on_levelling_off_a_cell_later_is_straddled() {
+    // A random rig (`sweep -- families 100 12909 random 11` #68): a camera 0.82 m
+    // high pitched 43.8° sees a 17.2 cm rock under the belly 1.83 m out, and the
+    // image's top edge ends on its rounded top. In the strip through it the first cut
+    // cell's top stands 1.04 cm over the top of the cell seen whole before it, a hair
+    // over the 1 cm a front still rising shows, and the next cut cell, seen, lies
+    // lower: the top levelled off there. It was `unknown`, clean.
+    let mut c = mounted([0.2624, 0.0628, 0.8219], [0.0377, 43.7953, -3.3751]);
+    c.camera.min_range_m = 0.3664;
+    let rock = |height_m| rock(1.8310, 0.0202, 0.1699, height_m);
+    let block = block_at(1.83, 0.02, 0.3, 0.3, 0.45);
+    belly_top_cut_goes_and_taller_never(&c, rock, (0.1719, 1.95), block, 12_909_068);
+}
+
+#[test]
 fn cells_a_belly_rock_s_shadow_edge_crosses_are_no_drop_off_but_a_drop_behind_it_is() {
     // A random rig (`sweep -- families 100 12309 random 11` #36): a 320×240 camera
     // 0.63 m high pitched 19.4° sees a 16.5° ramp under the right track and a 24 cm

@@ -218,7 +218,8 @@ fn on_track_surface(f: &Frame, ix: usize, iy: usize, r: f32) -> bool {
 /// [`FRONT_RISING_M`] over the highest point of the strip's last cell seen whole
 /// before it, one or two cells back, as on a rounded top's shoulder, which falls away
 /// across the cell), its top stands less than [`FRONT_RISING_M`] over that cell's top
-/// (the top no longer rises where the view ends), and one of the
+/// or the strip's next cell, seen, stands no higher (the top no longer rises where the
+/// view ends), and one of the
 /// two cells seen whole before that one holds ground no higher than `ground` (metres:
 /// a wheel radius over the tracks beside it), so that the front from the ground to
 /// the top is seen. The top is then seen: the belly test measures it against the
@@ -228,7 +229,9 @@ fn on_track_surface(f: &Frame, ix: usize, iy: usize, r: f32) -> bool {
 /// cut 4-8 cm past where it was first seen whole, was `unknown` (`sweep -- natural
 /// 100 12213 random 8` #12, a 320×240 camera 0.73 m high pitched 39°); so was a
 /// 26.4 cm one whose shoulder's cut cell spans 1.8 cm (`natural 100 12313 random 8`
-/// #38). A wall or a block whose face the view ends on holds the face in the cut
+/// #38); so was a 17.2 cm rock whose first cut cell's top stood 1.04 cm over the cell
+/// before it and the next cut cell's lower (`families 100 12909 random 11` #68,
+/// clean). A wall or a block whose face the view ends on holds the face in the cut
 /// cell (its points span more than the spread and rise over the cell before), or
 /// ground in the cell before it (the cut cell's top stands far over it). A gentle
 /// ramp under the belly rising out of view a little over a wheel radius high may
@@ -244,8 +247,13 @@ pub(super) fn belly_top_seen(f: &Frame, ix: usize, iy: usize, ground: f32) -> bo
     let Some((i, last)) = before(ix).find_map(|i| whole(i).map(|c| (i, c))) else {
         return false;
     };
+    // The strip's next cell, seen, no higher: the top levelled off there.
+    let next_lower = ix + 1 < s.nx && {
+        let c = s.cell(ix + 1, iy);
+        f.seen[c] && f.cells[c].top <= cut.top
+    };
     (cut.peak - cut.low <= ROUGH_SPREAD_M || cut.peak < last.peak + FRONT_RISING_M)
-        && cut.top < last.top + FRONT_RISING_M
+        && (cut.top < last.top + FRONT_RISING_M || next_lower)
         && before(i).filter_map(whole).any(|c| c.low <= ground)
 }
 
